@@ -1,0 +1,277 @@
+//! The lane vocabulary the float kernel is written in: one trait, implemented for `f32` (one
+//! pixel), `wide::f32x4` and `wide::f32x8` (four or eight consecutive pixels of a row).
+//!
+//! The scalar and SIMD paths are bit-identical because they run *the same kernel code* at
+//! different widths. That only holds if every rounding operation has the same IEEE-754 result
+//! in every implementation, so this trait is deliberately small and offers only operations
+//! whose results are exactly specified:
+//!
+//! | operation | scalar `f32` | `wide` lanes | why it is identical |
+//! |---|---|---|---|
+//! | `+ - * /` | IEEE | IEEE (`addps`, `divps`, …) | correctly rounded both ways |
+//! | [`Lane::sqrt`] | `libm::sqrtf` | `wide` `sqrt` (`sqrtps`) | both correctly rounded |
+//! | [`Lane::min`], [`Lane::max`] | compare + select | compare + select | defined by the same select, NaN and signed zeros included |
+//! | [`Lane::split_exponent`], [`Lane::pow2i`] | bit manipulation | integer lane ops | exact: no rounding at all |
+//!
+//! What is *not* here, on purpose: `mul_add` (fuses only with `+fma`, so it changes bits
+//! between builds), `recip`/`recip_sqrt` (≈12-bit approximations on x86), and any
+//! transcendental from `wide` or `micromath` (their algorithms differ from any scalar
+//! one). Transcendentals the kernel needs are built from these primitives in
+//! [`crate::float_math`], once, for every width.
+//!
+//! `core` has no `f32::sqrt` on stable, and `micromath`'s `sqrt` is an approximation (up to
+//! 6 % relative error, measured), which would break the one-level agreement with the f64
+//! reference; `libm::sqrtf` is correctly rounded, so the scalar lane uses it.
+
+use core::ops::{Add, Div, Mul, Neg, Sub};
+use wide::{f32x4, f32x8, i32x4, i32x8};
+
+/// A vector of `LANES` `f32` values processed together: one pixel per lane.
+///
+/// Implemented for `f32`, [`wide::f32x4`] and [`wide::f32x8`]. Every method must give, lane
+/// for lane, the bits the `f32` implementation gives; the tests in `tests/paths_agree.rs`
+/// check that on whole frames.
+pub trait Lane:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// A per-lane boolean: `bool` for one lane, an all-ones/all-zeros bit mask for SIMD.
+    type Mask: Copy;
+    /// How many pixels one value holds.
+    const LANES: usize;
+
+    /// Every lane set to `v`.
+    fn splat(v: f32) -> Self;
+    /// Lane `i` holds `start + i` (exact for the pixel indices a frame can have).
+    fn ramp(start: f32) -> Self;
+    /// Lane `i`'s value.
+    fn lane(self, i: usize) -> f32;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    /// Per-lane `self < rhs` (false if either is NaN).
+    fn lt(self, rhs: Self) -> Self::Mask;
+    /// Per-lane `self <= rhs` (false if either is NaN).
+    fn le(self, rhs: Self) -> Self::Mask;
+    /// Per-lane choice: `if_true` where `mask` is set, else `if_false`.
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    /// Lane-wise AND of two masks.
+    fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Lane-wise OR of two masks.
+    fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// Lane-wise AND-NOT: set where `a` is set and `b` is not.
+    fn and_not(a: Self::Mask, b: Self::Mask) -> Self::Mask;
+    /// True if any lane of `mask` is set.
+    fn any(mask: Self::Mask) -> bool;
+    /// Lane `i` of the mask is bit `i` of the result.
+    fn bitmask(mask: Self::Mask) -> u32;
+    /// Splits a positive, normal `self` into `(m, e)` with `self = m · 2^e`, `m` in `[1, 2)`,
+    /// `e` an integer held as `f32`. Exact. Lanes that are zero, negative, subnormal or not
+    /// finite give unspecified (but finite, deterministic) values; callers mask them.
+    fn split_exponent(self) -> (Self, Self);
+    /// `2^k` for integer-valued `k` in `[-126, 127]`. Exact. Other lanes: unspecified but
+    /// deterministic.
+    fn pow2i(k: Self) -> Self;
+
+    /// Per-lane minimum, defined as `if rhs < self { rhs } else { self }` at every width.
+    #[inline(always)]
+    fn min(self, rhs: Self) -> Self {
+        Self::select(rhs.lt(self), rhs, self)
+    }
+    /// Per-lane maximum, defined as `if self < rhs { rhs } else { self }` at every width.
+    #[inline(always)]
+    fn max(self, rhs: Self) -> Self {
+        Self::select(self.lt(rhs), rhs, self)
+    }
+}
+
+const EXP_BIAS: i32 = 127;
+const MANTISSA_MASK: u32 = 0x007f_ffff;
+const ONE_BITS: u32 = 0x3f80_0000;
+
+impl Lane for f32 {
+    type Mask = bool;
+    const LANES: usize = 1;
+
+    #[inline(always)]
+    fn splat(v: f32) -> Self {
+        v
+    }
+    #[inline(always)]
+    fn ramp(start: f32) -> Self {
+        start
+    }
+    #[inline(always)]
+    fn lane(self, _i: usize) -> f32 {
+        self
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        libm::sqrtf(self)
+    }
+    #[inline(always)]
+    fn lt(self, rhs: Self) -> bool {
+        self < rhs
+    }
+    #[inline(always)]
+    fn le(self, rhs: Self) -> bool {
+        self <= rhs
+    }
+    #[inline(always)]
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask {
+            if_true
+        } else {
+            if_false
+        }
+    }
+    #[inline(always)]
+    fn and(a: bool, b: bool) -> bool {
+        a & b
+    }
+    #[inline(always)]
+    fn or(a: bool, b: bool) -> bool {
+        a | b
+    }
+    #[inline(always)]
+    fn and_not(a: bool, b: bool) -> bool {
+        a & !b
+    }
+    #[inline(always)]
+    fn any(mask: bool) -> bool {
+        mask
+    }
+    #[inline(always)]
+    fn bitmask(mask: bool) -> u32 {
+        mask as u32
+    }
+    #[inline(always)]
+    fn split_exponent(self) -> (Self, Self) {
+        let bits = self.to_bits();
+        let e = ((bits >> 23) & 0xff) as i32 - EXP_BIAS;
+        let m = f32::from_bits((bits & MANTISSA_MASK) | ONE_BITS);
+        (m, e as f32)
+    }
+    #[inline(always)]
+    fn pow2i(k: Self) -> Self {
+        // `as` saturates, so any input gives a defined bit pattern.
+        let biased = (k as i32).wrapping_add(EXP_BIAS) & 0xff;
+        f32::from_bits((biased as u32) << 23)
+    }
+}
+
+macro_rules! wide_lane {
+    ($t:ty, $i:ty, $n:expr, $from_int:ident) => {
+        impl Lane for $t {
+            type Mask = $t;
+            const LANES: usize = $n;
+
+            #[inline(always)]
+            fn splat(v: f32) -> Self {
+                <$t>::splat(v)
+            }
+            #[inline(always)]
+            fn ramp(start: f32) -> Self {
+                let mut a = [0.0f32; $n];
+                let mut i = 0;
+                while i < $n {
+                    a[i] = start + i as f32;
+                    i += 1;
+                }
+                <$t>::new(a)
+            }
+            #[inline(always)]
+            fn lane(self, i: usize) -> f32 {
+                self.as_array()[i % $n]
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                <$t>::sqrt(self)
+            }
+            #[inline(always)]
+            fn lt(self, rhs: Self) -> Self {
+                self.simd_lt(rhs)
+            }
+            #[inline(always)]
+            fn le(self, rhs: Self) -> Self {
+                self.simd_le(rhs)
+            }
+            #[inline(always)]
+            fn select(mask: Self, if_true: Self, if_false: Self) -> Self {
+                mask.select(if_true, if_false)
+            }
+            #[inline(always)]
+            fn and(a: Self, b: Self) -> Self {
+                a & b
+            }
+            #[inline(always)]
+            fn or(a: Self, b: Self) -> Self {
+                a | b
+            }
+            #[inline(always)]
+            fn and_not(a: Self, b: Self) -> Self {
+                a & !b
+            }
+            #[inline(always)]
+            fn any(mask: Self) -> bool {
+                mask.any()
+            }
+            #[inline(always)]
+            fn bitmask(mask: Self) -> u32 {
+                mask.to_bitmask()
+            }
+            #[inline(always)]
+            fn split_exponent(self) -> (Self, Self) {
+                let bits: $i = wide::bytemuck::cast(self);
+                let e = ((bits >> 23) & <$i>::splat(0xff)) - <$i>::splat(EXP_BIAS);
+                let m_bits = (bits & <$i>::splat(MANTISSA_MASK as i32)) | <$i>::splat(ONE_BITS as i32);
+                (wide::bytemuck::cast(m_bits), <$t>::$from_int(e))
+            }
+            #[inline(always)]
+            fn pow2i(k: Self) -> Self {
+                let biased = (k.trunc_int() + <$i>::splat(EXP_BIAS)) & <$i>::splat(0xff);
+                wide::bytemuck::cast(biased << 23)
+            }
+        }
+    };
+}
+
+wide_lane!(f32x4, i32x4, 4, from_i32x4);
+wide_lane!(f32x8, i32x8, 8, from_i32x8);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn check_exact<L: Lane>() {
+        for &x in &[1.0f32, 1.5, 0.75, 3.0e-20, 7.5e30, 0.999_999_94, 1.000_000_1] {
+            let (m, e) = L::splat(x).split_exponent();
+            let (ms, es) = x.split_exponent();
+            assert_eq!(m.lane(0).to_bits(), ms.to_bits(), "mantissa of {x}");
+            assert_eq!(e.lane(L::LANES - 1), es, "exponent of {x}");
+            assert_eq!(ms * f32::powi(2.0, es as i32), x);
+        }
+        for k in -126..=127 {
+            let p = L::pow2i(L::splat(k as f32)).lane(0);
+            assert_eq!(p, f32::powi(2.0, k), "2^{k}");
+        }
+        let r = L::ramp(10.5);
+        for i in 0..L::LANES {
+            assert_eq!(r.lane(i), 10.5 + i as f32);
+        }
+        // min/max share one definition, NaN included.
+        let nan = L::splat(f32::NAN);
+        assert!(L::splat(1.0).max(nan).lane(0) == 1.0);
+        assert!(nan.max(L::splat(1.0)).lane(0).is_nan());
+    }
+
+    #[test]
+    fn exact_helpers_agree_at_every_width() {
+        check_exact::<f32>();
+        check_exact::<f32x4>();
+        check_exact::<f32x8>();
+    }
+}

@@ -1,0 +1,72 @@
+//! # shadeline
+//!
+//! A `#![no_std]`, allocation-free scanline shader for spheres lit by the Phong reflection
+//! model, one row at a time, into the caller's buffer.
+//!
+//! ```
+//! use shadeline::{Camera, LinearRgb, Light, Material, Prepared, Render, Rgb888, Scalar,
+//!                 Scene, Sphere, Vec3};
+//!
+//! // Describe the scene: every number is checked here, with errors naming the field.
+//! let camera = Camera {
+//!     position: Vec3::new(0.0, 0.0, 6.0),
+//!     look_at: Vec3::new(0.0, 0.0, 0.0),
+//!     up: Vec3::new(0.0, 1.0, 0.0),
+//!     vfov_degrees: 40.0,
+//! };
+//! let mut scene: Scene<4, 2> = Scene::new(camera, LinearRgb::new(0.05, 0.05, 0.1))?;
+//! scene.add_sphere(Sphere { center: Vec3::new(0.0, 0.0, 0.0), radius: 1.5, material: Material::default() })?;
+//! scene.add_light(Light::Distant {
+//!     direction: Vec3::new(-1.0, -1.0, -1.0),
+//!     color: LinearRgb::new(1.0, 1.0, 1.0),
+//!     intensity: 2.0,
+//! })?;
+//!
+//! // Prepare once per frame, then shade rows into any buffer you own.
+//! let frame = Prepared::<Scalar, 4, 2>::new(&scene, 48, 32)?;
+//! let mut line = [Rgb888::default(); 48];
+//! frame.render_line(16, &mut line)?;
+//! assert_ne!(line[24], line[0]); // the sphere is in the middle, the background at the edge
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Paths
+//!
+//! | path | type | numbers | contract |
+//! |---|---|---|---|
+//! | scalar | [`Prepared<Scalar>`] | `f32`, one pixel per kernel call | the float reference of the crate |
+//! | SIMD | [`Prepared<Simd4>`], [`Prepared<Simd8>`] | `wide::f32x4` / `f32x8` lanes | bit-identical to scalar |
+//!
+//! An independent `f64` renderer, [`reference`], written straight from the formulas and
+//! sharing no code with the kernels, is what the paths are measured against.
+//!
+//! ## Layout
+//!
+//! [`scene`] (what the caller describes) → [`prepare`] (per-frame constants) → [`render`]
+//! (the row driver, with [`spans`]) → `float_kernel` (the per-pixel stages, over [`lane`]) →
+//! [`pixel`] (encode). The formulas live in [`brdf`].
+
+#![no_std]
+#![forbid(unsafe_code)]
+#![deny(missing_docs)]
+
+pub mod brdf;
+pub mod float_math;
+mod float_kernel;
+pub mod lane;
+pub mod pixel;
+pub mod prepare;
+pub mod presets;
+pub mod reference;
+pub mod render;
+pub mod scene;
+pub mod spans;
+pub mod vec3;
+
+pub use pixel::{HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
+pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
+pub use presets::{exponent_series, EXPONENT_SERIES_SIZE};
+pub use render::{Render, RenderError};
+pub use scene::{Camera, Item, ItemKind, Light, Material, Model, Problem, Scene, SceneError, Sphere};
+pub use spans::Span;
+pub use vec3::Vec3;

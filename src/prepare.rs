@@ -1,0 +1,200 @@
+//! The prepare step of the float paths: every per-frame constant, computed once.
+//!
+//! [`Prepared::new`] turns a validated [`Scene`] and an image size into the numbers the row
+//! driver and the kernel read: the camera basis and pixel-to-plane scales, each sphere's offset
+//! from the eye and `1/r` (so normals need no square root), each material's `kd·albedo`, each
+//! light's arriving colour. Nothing below this step allocates, panics or recomputes a per-frame
+//! value per row or per pixel.
+//!
+//! The lane width is a type parameter ([`Scalar`], [`Simd4`], [`Simd8`]) and changes only how
+//! many pixels one kernel call shades: the prepared numbers are the same at every width, which
+//! is half of why the paths agree bit for bit (the other half is [`crate::lane`]).
+
+use crate::lane::Lane;
+use crate::pixel::LinearRgb;
+use crate::scene::{Light, Model, Scene};
+use crate::vec3::Vec3;
+use crate::RenderError;
+use core::marker::PhantomData;
+
+/// Largest accepted image width or height, in pixels.
+///
+/// Pixel indices stay exact in `f32` far beyond this; the limit keeps `width × height`
+/// within `u32` and matches what a 16-bit display controller can address.
+pub const MAX_DIMENSION: u32 = 65_535;
+
+/// Arriving light is clamped to this, so that a point light sitting on a surface (distance
+/// zero) gives a huge but finite value, never `inf·0 = NaN`.
+pub(crate) const MAX_ARRIVING: f32 = 1.0e30;
+
+/// A width of the float kernel: which [`Lane`] type one kernel call computes with.
+pub trait FloatPath {
+    /// The lane type: `f32`, `f32x4` or `f32x8`.
+    type Lane: Lane;
+    /// A short name for reports (`"scalar"`, `"simd4"`, `"simd8"`).
+    const NAME: &'static str;
+}
+
+/// The scalar float path: one pixel per kernel call, `f32`. The float reference of the crate.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Scalar;
+/// The SIMD float path at 4 lanes ([`wide::f32x4`]): SSE, NEON, wasm simd128.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Simd4;
+/// The SIMD float path at 8 lanes ([`wide::f32x8`]): one AVX register when built with AVX,
+/// two 4-lane halves otherwise.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Simd8;
+
+impl FloatPath for Scalar {
+    type Lane = f32;
+    const NAME: &'static str = "scalar";
+}
+impl FloatPath for Simd4 {
+    type Lane = wide::f32x4;
+    const NAME: &'static str = "simd4";
+}
+impl FloatPath for Simd8 {
+    type Lane = wide::f32x8;
+    const NAME: &'static str = "simd8";
+}
+
+/// A sphere's per-frame constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct PreparedSphere {
+    pub center: Vec3,
+    /// `eye − center`: the primary rays' origin offset.
+    pub eye_offset: Vec3,
+    pub radius_sq: f32,
+    pub inv_radius: f32,
+    /// `kd · albedo`, per channel.
+    pub kd_albedo: Vec3,
+    pub ks: f32,
+    pub shininess: f32,
+    /// 1.0 for Blinn-Phong, 0.0 for Phong (selected per lane).
+    pub blinn: f32,
+}
+
+/// A light's per-frame constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum PreparedLight {
+    /// `to_light`: unit vector toward the light; `arriving`: `color · intensity`.
+    Distant { to_light: Vec3, arriving: Vec3 },
+    /// `power`: `color · intensity / 4π`; arriving is `power / r²`.
+    Point { position: Vec3, power: Vec3 },
+}
+
+/// A scene prepared for rendering at one size on one float path (`W`).
+///
+/// ```
+/// use shadeline::{Prepared, Scalar, Simd8, Rgb888, exponent_series};
+/// let scene = exponent_series();
+/// let scalar = Prepared::<Scalar>::new(&scene, 64, 48)?;
+/// let simd = Prepared::<Simd8>::new(&scene, 64, 48)?;
+/// let (mut a, mut b) = ([Rgb888::default(); 64], [Rgb888::default(); 64]);
+/// scalar.render_line(24, &mut a)?;
+/// simd.render_line(24, &mut b)?;
+/// assert_eq!(a, b);
+/// # Ok::<(), shadeline::RenderError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize = 8> {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) eye: Vec3,
+    pub(crate) right: Vec3,
+    pub(crate) up: Vec3,
+    pub(crate) forward: Vec3,
+    /// `(w/h)·tan(vfov/2)`: camera-plane x at the right edge.
+    pub(crate) x_scale: f32,
+    /// `tan(vfov/2)`: camera-plane y at the top edge.
+    pub(crate) y_scale: f32,
+    pub(crate) width_f: f32,
+    pub(crate) height_f: f32,
+    pub(crate) epsilon: f32,
+    pub(crate) background: LinearRgb,
+    pub(crate) spheres: heapless::Vec<PreparedSphere, S>,
+    pub(crate) lights: heapless::Vec<PreparedLight, L>,
+    pub(crate) use_spans: bool,
+    _path: PhantomData<W>,
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    /// Prepares `scene` for a `width × height` image.
+    ///
+    /// Fails with [`RenderError::BadSize`] if a dimension is 0 or above [`MAX_DIMENSION`].
+    pub fn new(scene: &Scene<S, L>, width: u32, height: u32) -> Result<Self, RenderError> {
+        if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
+            return Err(RenderError::BadSize { width, height });
+        }
+        let camera = scene.camera();
+        let (right, up, forward) = scene.camera_basis();
+        let half_fov = camera.vfov_degrees * (core::f32::consts::PI / 360.0);
+        let tan = libm::tanf(half_fov);
+        let width_f = width as f32;
+        let height_f = height as f32;
+        let eye = camera.position;
+
+        let mut spheres = heapless::Vec::new();
+        for s in scene.spheres() {
+            let m = &s.material;
+            let p = PreparedSphere {
+                center: s.center,
+                eye_offset: eye - s.center,
+                radius_sq: s.radius * s.radius,
+                inv_radius: 1.0 / s.radius,
+                kd_albedo: Vec3::new(m.albedo.r, m.albedo.g, m.albedo.b).scale(m.kd),
+                ks: m.ks,
+                shininess: m.shininess,
+                blinn: if m.model == Model::BlinnPhong {
+                    1.0
+                } else {
+                    0.0
+                },
+            };
+            // Same capacity as the scene: cannot fail.
+            let _ = spheres.push(p);
+        }
+        let mut lights = heapless::Vec::new();
+        for l in scene.lights() {
+            let p = match *l {
+                Light::Distant {
+                    direction,
+                    color,
+                    intensity,
+                } => PreparedLight::Distant {
+                    to_light: -direction.normalized().unwrap_or_default(),
+                    arriving: Vec3::new(color.r, color.g, color.b).scale(intensity),
+                },
+                Light::Point {
+                    position,
+                    color,
+                    intensity,
+                } => PreparedLight::Point {
+                    position,
+                    power: Vec3::new(color.r, color.g, color.b)
+                        .scale(intensity / (4.0 * core::f32::consts::PI)),
+                },
+            };
+            let _ = lights.push(p);
+        }
+        Ok(Prepared {
+            width,
+            height,
+            eye,
+            right,
+            up,
+            forward,
+            x_scale: (width_f / height_f) * tan,
+            y_scale: tan,
+            width_f,
+            height_f,
+            epsilon: scene.ray_epsilon(),
+            background: scene.background(),
+            spheres,
+            lights,
+            use_spans: true,
+            _path: PhantomData,
+        })
+    }
+}

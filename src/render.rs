@@ -1,0 +1,233 @@
+//! The row driver: one row of pixels into the caller's slice.
+//!
+//! For row `y` it computes every sphere's [`Span`](crate::Span), merges them into covered runs,
+//! fills everything outside the runs with the background pixel (encoded once per row, no
+//! per-pixel work), and walks each run in packets of the path's lane count, handing the kernel
+//! only the spheres whose spans touch the packet. The last packet of a run computes full lanes
+//! and stores only the pixels that belong to the run: no per-lane branch in the math, no read
+//! or write outside the caller's slice.
+//!
+//! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
+//! on any number of threads, or streamed to a display one line buffer at a time.
+
+use crate::lane::Lane;
+use crate::pixel::{HitRecord, LinearRgb, Pixel, Shade};
+use crate::prepare::{FloatPath, Prepared};
+use crate::spans::Span;
+use core::fmt;
+
+/// Why a row or frame could not be rendered. Nothing is written when one is returned.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum RenderError {
+    /// A width or height of 0, or above [`MAX_DIMENSION`](crate::MAX_DIMENSION).
+    BadSize {
+        /// The requested width.
+        width: u32,
+        /// The requested height.
+        height: u32,
+    },
+    /// The row slice's length is not the image width.
+    LineLength {
+        /// The image width.
+        expected: usize,
+        /// The slice's length.
+        got: usize,
+    },
+    /// The frame slice's length is not width × height.
+    FrameLength {
+        /// width × height.
+        expected: usize,
+        /// The slice's length.
+        got: usize,
+    },
+    /// The row index is not below the image height.
+    RowOutOfRange {
+        /// The requested row.
+        y: u32,
+        /// The image height.
+        height: u32,
+    },
+}
+
+impl fmt::Display for RenderError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match *self {
+            RenderError::BadSize { width, height } => write!(
+                f,
+                "image size {width}x{height} is not supported (each side must be 1..={})",
+                crate::MAX_DIMENSION
+            ),
+            RenderError::LineLength { expected, got } => write!(
+                f,
+                "row buffer holds {got} pixels, the image is {expected} pixels wide"
+            ),
+            RenderError::FrameLength { expected, got } => write!(
+                f,
+                "frame buffer holds {got} pixels, the image has {expected}"
+            ),
+            RenderError::RowOutOfRange { y, height } => {
+                write!(f, "row {y} is outside an image {height} rows high")
+            }
+        }
+    }
+}
+
+impl core::error::Error for RenderError {}
+
+/// Anything that renders rows: every path's prepared frame implements it.
+///
+/// ```
+/// use shadeline::{Prepared, Render, Simd8, Rgb565, exponent_series};
+/// let frame = Prepared::<Simd8>::new(&exponent_series()?, 32, 24)?;
+/// let mut pixels = [Rgb565::default(); 32 * 24];
+/// frame.render_frame(&mut pixels)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub trait Render {
+    /// The image width in pixels.
+    fn width(&self) -> u32;
+    /// The image height in pixels.
+    fn height(&self) -> u32;
+    /// Shades row `y` (0 = top) into `out`, which must be exactly `width` pixels long.
+    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError>;
+    /// Shades every row into `frame`, row-major, exactly `width × height` pixels long.
+    fn render_frame<P: Pixel>(&self, frame: &mut [P]) -> Result<(), RenderError> {
+        let w = self.width() as usize;
+        let expected = w * self.height() as usize;
+        if frame.len() != expected {
+            return Err(RenderError::FrameLength {
+                expected,
+                got: frame.len(),
+            });
+        }
+        for (y, row) in frame.chunks_exact_mut(w).enumerate() {
+            self.render_line(y as u32, row)?;
+        }
+        Ok(())
+    }
+}
+
+/// Checks a row request against an image size.
+pub(crate) fn check_line(y: u32, len: usize, width: u32, height: u32) -> Result<(), RenderError> {
+    if y >= height {
+        return Err(RenderError::RowOutOfRange { y, height });
+    }
+    if len != width as usize {
+        return Err(RenderError::LineLength {
+            expected: width as usize,
+            got: len,
+        });
+    }
+    Ok(())
+}
+
+/// Merged covered runs of a row: `[start, end)` pixel ranges, sorted, disjoint.
+pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Vec<Span, S> {
+    let mut runs: heapless::Vec<Span, S> = heapless::Vec::new();
+    for span in spans.iter().flatten() {
+        let _ = runs.push(*span);
+    }
+    // Insertion sort by start: S is small and this is once per row.
+    for i in 1..runs.len() {
+        let mut j = i;
+        while j > 0 && runs[j - 1].start > runs[j].start {
+            runs.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let mut merged: heapless::Vec<Span, S> = heapless::Vec::new();
+    for span in runs {
+        match merged.last_mut() {
+            Some(last) if span.start <= last.end => last.end = last.end.max(span.end),
+            _ => {
+                let _ = merged.push(span);
+            }
+        }
+    }
+    merged
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    /// Turns the scanline spans on (the default) or off. Off, every packet tests every sphere:
+    /// the naive per-pixel renderer, kept for benchmarks and for the test that spans change
+    /// no pixel.
+    pub fn with_spans(mut self, on: bool) -> Self {
+        self.use_spans = on;
+        self
+    }
+
+    fn background_pixel<P: Pixel>(&self) -> P {
+        P::encode(&Shade {
+            color: self.background,
+            hit: HitRecord::default(),
+        })
+    }
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> {
+    fn width(&self) -> u32 {
+        self.width
+    }
+
+    fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError> {
+        check_line(y, out.len(), self.width, self.height)?;
+        let lanes = W::Lane::LANES;
+        let row = self.row(y);
+        let spans = self.row_spans(y);
+        let runs = merge_runs::<S>(&spans);
+        let background = self.background_pixel::<P>();
+
+        let mut x = 0usize;
+        for run in &runs {
+            let (start, end) = (run.start as usize, run.end as usize);
+            if let Some(gap) = out.get_mut(x..start) {
+                gap.fill(background);
+            }
+            x = end;
+            let Some(run_pixels) = out.get_mut(start..end) else {
+                continue;
+            };
+            for (chunk_index, chunk) in run_pixels.chunks_mut(lanes).enumerate() {
+                let x0 = (start + chunk_index * lanes) as u32;
+                let x1 = x0 + chunk.len() as u32;
+                let mut candidates: heapless::Vec<u16, S> = heapless::Vec::new();
+                for (k, span) in spans.iter().enumerate() {
+                    if let Some(s) = span {
+                        if s.start < x1 && x0 < s.end {
+                            let _ = candidates.push(k as u16);
+                        }
+                    }
+                }
+                if candidates.is_empty() {
+                    chunk.fill(background);
+                    continue;
+                }
+                let packet = self.shade_packet(&row, x0, &candidates, P::NEEDS_HITS);
+                for (i, (px, shadowed)) in chunk.iter_mut().zip(packet.shadowed).enumerate() {
+                    let sphere = packet.sphere.lane(i);
+                    let shade = Shade {
+                        color: LinearRgb::new(
+                            packet.color.x.lane(i),
+                            packet.color.y.lane(i),
+                            packet.color.z.lane(i),
+                        ),
+                        hit: HitRecord {
+                            sphere: (sphere >= 0.0).then_some(sphere as u16),
+                            shadowed: if sphere >= 0.0 { shadowed } else { 0 },
+                        },
+                    };
+                    *px = P::encode(&shade);
+                }
+            }
+        }
+        if let Some(tail) = out.get_mut(x..) {
+            tail.fill(background);
+        }
+        Ok(())
+    }
+}

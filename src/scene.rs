@@ -1,0 +1,522 @@
+//! The scene a caller describes: a camera, spheres with materials, lights and a background.
+//!
+//! A [`Scene`] can only hold valid items: [`Scene::new`], [`Scene::add_sphere`] and
+//! [`Scene::add_light`] check every number as it comes in and return a [`SceneError`] that
+//! names the item and the field, so nothing downstream (prepare, the kernels, the row driver)
+//! ever sees a NaN, a zero-length direction or a degenerate camera. Capacities are const
+//! generics backed by [`heapless::Vec`], so a scene lives on the stack or in a `static`, and
+//! exceeding a capacity is an error, not an allocation.
+//!
+//! # Ranges
+//!
+//! Every number is finite, and bounded so that no intermediate in the float kernel can
+//! overflow into `inf`/`NaN` (squared distances stay below `1e13`, arriving light below
+//! `1e30`):
+//!
+//! | quantity | accepted |
+//! |---|---|
+//! | coordinates (camera, centres, point lights) | `|v| ≤` [`MAX_COORDINATE`] per component |
+//! | radius | `0 < r ≤` [`MAX_COORDINATE`] |
+//! | colours, albedo, `kd`, `ks` | `0 ≤ v ≤` [`MAX_VALUE`] |
+//! | light intensity | `0 ≤ i ≤` [`MAX_INTENSITY`] |
+//! | shininess `n` | `0 < n ≤` [`MAX_SHININESS`] |
+//! | directions (camera up, distant light) | finite, not zero; only the direction is used |
+//! | vertical field of view | `0° < vfov < 180°` |
+
+use crate::pixel::LinearRgb;
+use crate::vec3::Vec3;
+use core::fmt;
+
+/// Largest accepted magnitude of a coordinate component and of a radius, in scene units.
+pub const MAX_COORDINATE: f32 = 1.0e6;
+/// Largest accepted colour component, albedo component, `kd` or `ks`.
+pub const MAX_VALUE: f32 = 1.0e6;
+/// Largest accepted light intensity.
+pub const MAX_INTENSITY: f32 = 1.0e12;
+/// Largest accepted Phong exponent.
+pub const MAX_SHININESS: f32 = 1.0e6;
+/// Smallest sine of the angle between the camera's up vector and its view direction.
+pub const MIN_UP_SINE: f32 = 1.0e-3;
+
+/// The pinhole camera: where it is, what it looks at, which way is up, how wide it sees.
+///
+/// The primary ray of pixel `(i, j)` of a `w × h` image goes through the pixel centre:
+/// `x = (2(i + ½)/w − 1)·(w/h)·tan(vfov/2)`, `y = (1 − 2(j + ½)/h)·tan(vfov/2)`, direction
+/// `normalize(x·right + y·up' + forward)`, where `forward` points at `look_at`,
+/// `right = normalize(forward × up)` and `up' = right × forward` (right-handed).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Camera {
+    /// The eye point.
+    pub position: Vec3,
+    /// The point the camera looks at; must differ from `position`.
+    pub look_at: Vec3,
+    /// Which way is up; must not be parallel to the view direction. Need not be unit length.
+    pub up: Vec3,
+    /// Vertical field of view in degrees, in `(0, 180)`.
+    pub vfov_degrees: f32,
+}
+
+/// Which reflection model a material uses for its specular lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+#[non_exhaustive]
+pub enum Model {
+    /// Classic Phong: `ks·I·max(0, R·V)^n`, `R` the light's travel direction mirrored about `N`.
+    #[default]
+    Phong,
+    /// Classic Blinn-Phong: `ks·I·max(0, N·H)^n` with `H = normalize(L + V)`.
+    BlinnPhong,
+}
+
+/// How a sphere's surface reflects light (the classic Phong parameters).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Material {
+    /// Diffuse colour, linear RGB, each component `≥ 0`.
+    pub albedo: LinearRgb,
+    /// Weight of the diffuse term, `≥ 0`.
+    pub kd: f32,
+    /// Weight of the specular term, `≥ 0`. The specular term is never tinted by `albedo`.
+    pub ks: f32,
+    /// Specular exponent `n > 0`: larger is a smaller, tighter highlight.
+    pub shininess: f32,
+    /// The specular model.
+    pub model: Model,
+}
+
+/// A sphere: centre and radius in scene units, and its material.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    /// The centre.
+    pub center: Vec3,
+    /// The radius, `> 0`.
+    pub radius: f32,
+    /// The surface.
+    pub material: Material,
+}
+
+/// A light source. Colour and intensity multiply; colour is linear RGB.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Light {
+    /// Light arriving from infinitely far away along one direction, undimmed.
+    Distant {
+        /// The direction the light *travels* (from the light toward the scene); any length.
+        direction: Vec3,
+        /// Linear RGB colour.
+        color: LinearRgb,
+        /// Scalar intensity.
+        intensity: f32,
+    },
+    /// Light from a point, falling off with distance: arriving `color·intensity / (4π r²)`.
+    Point {
+        /// Where the light is.
+        position: Vec3,
+        /// Linear RGB colour.
+        color: LinearRgb,
+        /// Scalar intensity (power).
+        intensity: f32,
+    },
+}
+
+/// Which item of a scene an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Item {
+    /// The camera.
+    Camera,
+    /// The background colour.
+    Background,
+    /// The sphere with this index (in the order they were added, from 0).
+    Sphere(usize),
+    /// The light with this index (in the order they were added, from 0).
+    Light(usize),
+}
+
+/// What kind of item a capacity is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ItemKind {
+    /// Spheres.
+    Sphere,
+    /// Lights.
+    Light,
+}
+
+/// What is wrong with a field.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Problem {
+    /// NaN or infinite.
+    NotFinite,
+    /// Must be greater than zero.
+    NotPositive,
+    /// Must not be negative.
+    Negative,
+    /// Larger than the accepted range (see the module docs).
+    TooLarge,
+    /// A direction of zero length.
+    ZeroLength,
+    /// The camera looks at its own position.
+    LookAtEqualsPosition,
+    /// The camera's up vector is parallel to its view direction.
+    UpParallelToView,
+    /// The field of view is not inside `(0°, 180°)`.
+    FieldOfViewOutOfRange,
+}
+
+/// Why a scene was refused: the item, the field (named as in the scene file) and the problem.
+///
+/// ```
+/// use shadeline::{Scene, Sphere, Material, Camera, Vec3, LinearRgb, SceneError, Item, Problem};
+/// let camera = Camera { position: Vec3::new(0.0, 0.0, 5.0), look_at: Vec3::new(0.0, 0.0, 0.0),
+///                       up: Vec3::new(0.0, 1.0, 0.0), vfov_degrees: 40.0 };
+/// let mut scene: Scene = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+/// let bad = Sphere { center: Vec3::new(0.0, 0.0, 0.0), radius: -1.0, material: Material::default() };
+/// assert_eq!(
+///     scene.add_sphere(bad),
+///     Err(SceneError::Invalid { item: Item::Sphere(0), field: "radius", problem: Problem::NotPositive })
+/// );
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum SceneError {
+    /// A field of an item holds a value the model cannot use.
+    Invalid {
+        /// The item.
+        item: Item,
+        /// The field's name, as spelled in the scene file (`"radius"`, `"look_at"`, …).
+        field: &'static str,
+        /// What is wrong with it.
+        problem: Problem,
+    },
+    /// More items than the scene's capacity.
+    CapacityExceeded {
+        /// What was being added.
+        kind: ItemKind,
+        /// The capacity (the const generic of [`Scene`]).
+        capacity: usize,
+    },
+}
+
+impl fmt::Display for Item {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Item::Camera => f.write_str("camera"),
+            Item::Background => f.write_str("background"),
+            Item::Sphere(i) => write!(f, "sphere {i}"),
+            Item::Light(i) => write!(f, "light {i}"),
+        }
+    }
+}
+
+impl fmt::Display for Problem {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Problem::NotFinite => "must be a finite number (not NaN or infinite)",
+            Problem::NotPositive => "must be greater than zero",
+            Problem::Negative => "must not be negative",
+            Problem::TooLarge => "is larger than the accepted range",
+            Problem::ZeroLength => "must not be a zero-length vector",
+            Problem::LookAtEqualsPosition => "must differ from the camera position",
+            Problem::UpParallelToView => "must not be parallel to the view direction",
+            Problem::FieldOfViewOutOfRange => "must be between 0 and 180 degrees, exclusive",
+        })
+    }
+}
+
+impl fmt::Display for SceneError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            SceneError::Invalid {
+                item,
+                field,
+                problem,
+            } => {
+                write!(f, "{item}: `{field}` {problem}")?;
+                if *problem == Problem::TooLarge {
+                    write!(f, " (at most {:e})", limit_of(field))?;
+                }
+                Ok(())
+            }
+            SceneError::CapacityExceeded { kind, capacity } => {
+                let what = match kind {
+                    ItemKind::Sphere => "spheres",
+                    ItemKind::Light => "lights",
+                };
+                write!(f, "too many {what}: this scene holds at most {capacity}")
+            }
+        }
+    }
+}
+
+impl core::error::Error for SceneError {}
+
+fn limit_of(field: &str) -> f32 {
+    match field {
+        "intensity" => MAX_INTENSITY,
+        "shininess" => MAX_SHININESS,
+        "albedo" | "color" | "kd" | "ks" | "background" => MAX_VALUE,
+        _ => MAX_COORDINATE,
+    }
+}
+
+/// Field-level checks, each returning the first problem found.
+struct Check {
+    item: Item,
+}
+
+impl Check {
+    fn err(&self, field: &'static str, problem: Problem) -> SceneError {
+        SceneError::Invalid {
+            item: self.item,
+            field,
+            problem,
+        }
+    }
+    fn finite(&self, field: &'static str, v: &[f32]) -> Result<(), SceneError> {
+        if v.iter().all(|x| x.is_finite()) {
+            Ok(())
+        } else {
+            Err(self.err(field, Problem::NotFinite))
+        }
+    }
+    /// Finite, `0 ≤ v ≤ max` for every component.
+    fn non_negative(&self, field: &'static str, v: &[f32], max: f32) -> Result<(), SceneError> {
+        self.finite(field, v)?;
+        if v.iter().any(|&x| x < 0.0) {
+            return Err(self.err(field, Problem::Negative));
+        }
+        if v.iter().any(|&x| x > max) {
+            return Err(self.err(field, Problem::TooLarge));
+        }
+        Ok(())
+    }
+    /// Finite, `0 < v ≤ max`.
+    fn positive(&self, field: &'static str, v: f32, max: f32) -> Result<(), SceneError> {
+        self.finite(field, &[v])?;
+        if v <= 0.0 {
+            return Err(self.err(field, Problem::NotPositive));
+        }
+        if v > max {
+            return Err(self.err(field, Problem::TooLarge));
+        }
+        Ok(())
+    }
+    fn point(&self, field: &'static str, p: Vec3) -> Result<(), SceneError> {
+        self.finite(field, &[p.x, p.y, p.z])?;
+        if p.max_abs() > MAX_COORDINATE {
+            return Err(self.err(field, Problem::TooLarge));
+        }
+        Ok(())
+    }
+    fn direction(&self, field: &'static str, d: Vec3) -> Result<Vec3, SceneError> {
+        self.finite(field, &[d.x, d.y, d.z])?;
+        d.normalized()
+            .ok_or_else(|| self.err(field, Problem::ZeroLength))
+    }
+    fn color(&self, field: &'static str, c: LinearRgb) -> Result<(), SceneError> {
+        self.non_negative(field, &[c.r, c.g, c.b], MAX_VALUE)
+    }
+}
+
+impl Camera {
+    /// Checks the camera and returns its orthonormal basis `(right, up, forward)`.
+    pub(crate) fn basis(&self) -> Result<(Vec3, Vec3, Vec3), SceneError> {
+        let c = Check { item: Item::Camera };
+        c.point("position", self.position)?;
+        c.point("look_at", self.look_at)?;
+        let up = c.direction("up", self.up)?;
+        c.finite("vfov", &[self.vfov_degrees])?;
+        if !(self.vfov_degrees > 0.0 && self.vfov_degrees < 180.0) {
+            return Err(c.err("vfov", Problem::FieldOfViewOutOfRange));
+        }
+        let forward = (self.look_at - self.position)
+            .normalized()
+            .ok_or_else(|| c.err("look_at", Problem::LookAtEqualsPosition))?;
+        let side = forward.cross(up);
+        if libm::sqrtf(side.dot(side)) < MIN_UP_SINE {
+            return Err(c.err("up", Problem::UpParallelToView));
+        }
+        // `side` is at least MIN_UP_SINE long, so it normalizes.
+        let right = side
+            .normalized()
+            .ok_or_else(|| c.err("up", Problem::UpParallelToView))?;
+        let true_up = right.cross(forward);
+        Ok((right, true_up, forward))
+    }
+}
+
+impl Material {
+    fn check(&self, item: Item) -> Result<(), SceneError> {
+        let c = Check { item };
+        c.color("albedo", self.albedo)?;
+        c.non_negative("kd", &[self.kd], MAX_VALUE)?;
+        c.non_negative("ks", &[self.ks], MAX_VALUE)?;
+        c.positive("shininess", self.shininess, MAX_SHININESS)?;
+        Ok(())
+    }
+}
+
+impl Default for Material {
+    /// A mid-grey plastic: albedo 0.18, `kd` 0.8, `ks` 0.2, `n` 50, classic Phong.
+    fn default() -> Self {
+        Material {
+            albedo: LinearRgb::new(0.18, 0.18, 0.18),
+            kd: 0.8,
+            ks: 0.2,
+            shininess: 50.0,
+            model: Model::Phong,
+        }
+    }
+}
+
+impl Sphere {
+    fn check(&self, item: Item) -> Result<(), SceneError> {
+        let c = Check { item };
+        c.point("center", self.center)?;
+        c.positive("radius", self.radius, MAX_COORDINATE)?;
+        self.material.check(item)
+    }
+}
+
+impl Light {
+    fn check(&self, item: Item) -> Result<(), SceneError> {
+        let c = Check { item };
+        let (color, intensity) = match *self {
+            Light::Distant {
+                direction,
+                color,
+                intensity,
+            } => {
+                c.direction("direction", direction)?;
+                (color, intensity)
+            }
+            Light::Point {
+                position,
+                color,
+                intensity,
+            } => {
+                c.point("position", position)?;
+                (color, intensity)
+            }
+        };
+        c.color("color", color)?;
+        c.non_negative("intensity", &[intensity], MAX_INTENSITY)
+    }
+}
+
+/// A validated scene holding up to `S` spheres and `L` lights.
+///
+/// ```
+/// use shadeline::{Scene, Sphere, Material, Light, Camera, Vec3, LinearRgb};
+/// let camera = Camera {
+///     position: Vec3::new(0.0, 0.0, 5.0),
+///     look_at: Vec3::new(0.0, 0.0, 0.0),
+///     up: Vec3::new(0.0, 1.0, 0.0),
+///     vfov_degrees: 40.0,
+/// };
+/// let mut scene: Scene<4, 2> = Scene::new(camera, LinearRgb::new(0.1, 0.2, 0.3))?;
+/// scene.add_sphere(Sphere { center: Vec3::new(0.0, 0.0, 0.0), radius: 1.0, material: Material::default() })?;
+/// scene.add_light(Light::Distant {
+///     direction: Vec3::new(-1.0, -1.0, -1.0),
+///     color: LinearRgb::new(1.0, 1.0, 1.0),
+///     intensity: 3.0,
+/// })?;
+/// assert_eq!(scene.spheres().len(), 1);
+/// # Ok::<(), shadeline::SceneError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Scene<const S: usize = 16, const L: usize = 8> {
+    camera: Camera,
+    /// The camera's orthonormal `(right, up, forward)`, derived once when it is checked.
+    basis: (Vec3, Vec3, Vec3),
+    background: LinearRgb,
+    spheres: heapless::Vec<Sphere, S>,
+    lights: heapless::Vec<Light, L>,
+}
+
+impl<const S: usize, const L: usize> Scene<S, L> {
+    /// An empty scene (no spheres, no lights) seen through `camera` over `background`.
+    pub fn new(camera: Camera, background: LinearRgb) -> Result<Self, SceneError> {
+        let basis = camera.basis()?;
+        Check {
+            item: Item::Background,
+        }
+        .color("background", background)?;
+        Ok(Scene {
+            camera,
+            basis,
+            background,
+            spheres: heapless::Vec::new(),
+            lights: heapless::Vec::new(),
+        })
+    }
+
+    /// Adds a sphere after checking it; returns its index.
+    pub fn add_sphere(&mut self, sphere: Sphere) -> Result<usize, SceneError> {
+        let index = self.spheres.len();
+        sphere.check(Item::Sphere(index))?;
+        self.spheres
+            .push(sphere)
+            .map_err(|_| SceneError::CapacityExceeded {
+                kind: ItemKind::Sphere,
+                capacity: S,
+            })?;
+        Ok(index)
+    }
+
+    /// Adds a light after checking it; returns its index.
+    pub fn add_light(&mut self, light: Light) -> Result<usize, SceneError> {
+        let index = self.lights.len();
+        light.check(Item::Light(index))?;
+        self.lights
+            .push(light)
+            .map_err(|_| SceneError::CapacityExceeded {
+                kind: ItemKind::Light,
+                capacity: L,
+            })?;
+        Ok(index)
+    }
+
+    /// The camera.
+    pub fn camera(&self) -> &Camera {
+        &self.camera
+    }
+
+    /// The camera's orthonormal basis `(right, up, forward)`, as defined on [`Camera`].
+    pub fn camera_basis(&self) -> (Vec3, Vec3, Vec3) {
+        self.basis
+    }
+
+    /// The background colour, seen where no sphere is hit.
+    pub fn background(&self) -> LinearRgb {
+        self.background
+    }
+
+    /// The spheres, in the order they were added.
+    pub fn spheres(&self) -> &[Sphere] {
+        &self.spheres
+    }
+
+    /// The lights, in the order they were added.
+    pub fn lights(&self) -> &[Light] {
+        &self.lights
+    }
+
+    /// The scene's ray epsilon, in scene units: primary and shadow hits closer than this are
+    /// ignored, and shadow rays start this far out along the normal (the lesson's `bias`).
+    ///
+    /// It is `1e-4 · max(1, extent)`, where `extent` is the largest coordinate magnitude in
+    /// the scene (camera, sphere centre plus radius, point light): about 800 `f32` ulps of
+    /// the coordinates, so a shadow ray never re-hits its own surface through rounding, yet
+    /// small enough not to lift contact shadows visibly. Every path and the f64 reference
+    /// use this same number.
+    pub fn ray_epsilon(&self) -> f32 {
+        let mut extent = self.camera.position.max_abs().max(1.0);
+        for s in &self.spheres {
+            extent = extent.max(s.center.max_abs() + s.radius);
+        }
+        for l in &self.lights {
+            if let Light::Point { position, .. } = l {
+                extent = extent.max(position.max_abs());
+            }
+        }
+        1.0e-4 * extent
+    }
+}

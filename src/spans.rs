@@ -1,0 +1,130 @@
+//! Scanline spans: which pixels of a row each sphere can cover, computed analytically.
+//!
+//! A sphere seen from a pinhole projects to a conic, so on one row the set of camera-plane
+//! `x` whose primary ray meets the sphere is where a quadratic is non-positive. With `O` the
+//! eye, `C` the centre, `oc = C − O`, `k = |oc|² − r²`, row base `B = y·up + forward` and the
+//! unnormalized ray direction `d = x·right + B` (`right ⟂ B`, `|right| = 1`):
+//!
+//! ```text
+//! ray line meets sphere  ⇔  |oc × d|² ≤ r²|d|²  ⇔  (k − a²)x² − 2ab·x + (kβ − b²) ≤ 0
+//! a = oc·right,  b = oc·B,  β = B·B
+//! ```
+//!
+//! The test is on the whole line, so it also admits spheres behind the eye: that only makes
+//! spans larger, never smaller. The span is then widened so it stays **conservative** — no
+//! pixel the per-pixel test would hit is ever left out (tested on random scenes against the
+//! brute-force renderer, bit for bit):
+//!
+//! - the discriminant gets a relative slack of `1e-4`, which also opens a small span on rows
+//!   that graze the top or bottom of the silhouette;
+//! - the pixel range is widened by two pixels on each side;
+//! - if the eye is inside or on the sphere (`k ≤ 0`), or the conic is not an ellipse
+//!   across the row (`k − a² ≤ 1e-6·k`: the sphere reaches the camera's side plane), the span
+//!   is the whole row.
+//!
+//! All of it is per row and per sphere in `f32`: a few dozen operations, against thousands
+//! per pixel row.
+
+use crate::prepare::{FloatPath, Prepared};
+use crate::vec3::Vec3;
+
+/// The half-open pixel range `[start, end)` of a row that one sphere may cover.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct Span {
+    /// First pixel that may be covered.
+    pub start: u32,
+    /// One past the last pixel that may be covered (`start < end ≤ width`).
+    pub end: u32,
+}
+
+/// Pixels of widening on each side of an analytic span.
+const MARGIN_PIXELS: f32 = 2.0;
+/// Relative slack on the discriminant.
+const DISC_SLACK: f32 = 1.0e-4;
+
+/// The span of a sphere on a row, or `None` if the sphere cannot cover any pixel of it.
+///
+/// `eye_offset` is `eye − centre`, `base` the row base `y·up + forward`; `x_scale` and `width`
+/// map camera-plane `x` to pixel indices as the primary rays do.
+pub(crate) fn sphere_span(
+    eye_offset: Vec3,
+    radius_sq: f32,
+    right: Vec3,
+    base: Vec3,
+    x_scale: f32,
+    width: u32,
+) -> Option<Span> {
+    let full = Some(Span {
+        start: 0,
+        end: width,
+    });
+    let oc = -eye_offset;
+    let k = oc.dot(oc) - radius_sq;
+    if !(k > 0.0) {
+        return full;
+    }
+    let a = oc.dot(right);
+    let b = oc.dot(base);
+    let beta = base.dot(base);
+    let quad = k - a * a;
+    if !(quad > 1.0e-6 * k) {
+        return full;
+    }
+    let ab = a * b;
+    let c = k * beta - b * b;
+    let disc = ab * ab - quad * c;
+    let slack = DISC_SLACK * (ab * ab + (quad * c).abs());
+    if disc < -slack {
+        return None;
+    }
+    let half = libm::sqrtf(disc.max(0.0) + slack) / quad;
+    let mid = ab / quad;
+    // Camera-plane x to (fractional) pixel index: i = (x/x_scale + 1)·w/2 − ½.
+    let w = width as f32;
+    let to_pixel = |x: f32| (x / x_scale + 1.0) * (0.5 * w) - 0.5;
+    let lo = to_pixel(mid - half) - MARGIN_PIXELS;
+    let hi = to_pixel(mid + half) + MARGIN_PIXELS;
+    if !(lo.is_finite() && hi.is_finite()) {
+        return full;
+    }
+    if hi < 0.0 || lo >= w {
+        return None;
+    }
+    // Both are finite and clamped into [0, w], so the casts are exact and in range.
+    let start = lo.max(0.0) as u32;
+    let end = (hi.min(w - 1.0) as u32 + 1).min(width);
+    if start >= end {
+        return None;
+    }
+    Some(Span { start, end })
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    /// The span of every sphere on row `y`, in scene order (`None`: not on this row).
+    ///
+    /// With spans turned off ([`Prepared::with_spans`]) every sphere spans the whole row.
+    pub fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
+        let row = self.row(y);
+        let mut out = heapless::Vec::new();
+        for s in &self.spheres {
+            let span = if self.use_spans {
+                sphere_span(
+                    s.eye_offset,
+                    s.radius_sq,
+                    self.right,
+                    row.base,
+                    self.x_scale,
+                    self.width,
+                )
+            } else {
+                Some(Span {
+                    start: 0,
+                    end: self.width,
+                })
+            };
+            // Same capacity as the sphere list: cannot fail.
+            let _ = out.push(span);
+        }
+        out
+    }
+}

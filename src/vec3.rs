@@ -1,0 +1,135 @@
+//! `Vec3<T>`: one small vector type for every width.
+//!
+//! The scene is described with `Vec3<f32>`; the float kernel computes with `Vec3<L>` where
+//! `L` is a [`Lane`] (`f32`, `f32x4`, `f32x8`). The operations are written once, so a dot
+//! product is summed in the same order, `(x·x' + y·y') + z·z'`, at every width — one of the
+//! reasons the scalar and SIMD paths agree bit for bit.
+
+use crate::lane::Lane;
+use core::ops::{Add, Mul, Neg, Sub};
+
+/// A 3-component vector: a point, a direction or an offset in scene units.
+///
+/// ```
+/// use shadeline::Vec3;
+/// let a = Vec3::new(1.0, 2.0, 2.0);
+/// assert_eq!(a.dot(a), 9.0);
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Vec3<T = f32> {
+    /// The x component (right in a default camera).
+    pub x: T,
+    /// The y component (up in a default camera).
+    pub y: T,
+    /// The z component (toward the viewer in a default camera).
+    pub z: T,
+}
+
+impl<T> Vec3<T> {
+    /// A vector from its three components.
+    #[inline(always)]
+    pub const fn new(x: T, y: T, z: T) -> Self {
+        Vec3 { x, y, z }
+    }
+}
+
+impl<T: Lane> Vec3<T> {
+    /// All three components set to lanes of `v`.
+    #[inline(always)]
+    pub fn splat(v: Vec3<f32>) -> Self {
+        Vec3::new(T::splat(v.x), T::splat(v.y), T::splat(v.z))
+    }
+    /// The dot product, summed as `(x·x' + y·y') + z·z'`.
+    #[inline(always)]
+    pub fn dot(self, o: Self) -> T {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    /// Each component multiplied by `s`.
+    #[inline(always)]
+    pub fn scale(self, s: T) -> Self {
+        Vec3::new(self.x * s, self.y * s, self.z * s)
+    }
+    /// The cross product `self × o` (right-handed).
+    #[inline(always)]
+    pub fn cross(self, o: Self) -> Self {
+        Vec3::new(
+            self.y * o.z - self.z * o.y,
+            self.z * o.x - self.x * o.z,
+            self.x * o.y - self.y * o.x,
+        )
+    }
+    /// Per-lane choice between two vectors.
+    #[inline(always)]
+    pub fn select(mask: T::Mask, a: Self, b: Self) -> Self {
+        Vec3::new(
+            T::select(mask, a.x, b.x),
+            T::select(mask, a.y, b.y),
+            T::select(mask, a.z, b.z),
+        )
+    }
+}
+
+impl Vec3<f32> {
+    /// The largest absolute component (the ∞-norm).
+    pub fn max_abs(self) -> f32 {
+        let a = if self.x < 0.0 { -self.x } else { self.x };
+        let b = if self.y < 0.0 { -self.y } else { self.y };
+        let c = if self.z < 0.0 { -self.z } else { self.z };
+        a.max(b).max(c)
+    }
+    /// True if every component is finite.
+    pub fn is_finite(self) -> bool {
+        self.x.is_finite() && self.y.is_finite() && self.z.is_finite()
+    }
+    /// The unit vector along `self`, or `None` for a zero or non-finite vector.
+    ///
+    /// The vector is first divided by its largest component, so the squared length neither
+    /// overflows for huge inputs nor underflows for tiny ones.
+    pub fn normalized(self) -> Option<Self> {
+        let m = self.max_abs();
+        if !(m > 0.0 && m.is_finite()) {
+            return None;
+        }
+        let s = self.scale(1.0 / m);
+        let len = libm::sqrtf(s.dot(s));
+        Some(s.scale(1.0 / len))
+    }
+}
+
+impl<T: Lane> Add for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn add(self, o: Self) -> Self {
+        Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
+    }
+}
+
+impl<T: Lane> Sub for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn sub(self, o: Self) -> Self {
+        Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
+    }
+}
+
+impl<T: Lane> Neg for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Vec3::new(-self.x, -self.y, -self.z)
+    }
+}
+
+impl<T: Lane> Mul<T> for Vec3<T> {
+    type Output = Self;
+    #[inline(always)]
+    fn mul(self, s: T) -> Self {
+        self.scale(s)
+    }
+}
+
+impl From<[f32; 3]> for Vec3<f32> {
+    fn from(a: [f32; 3]) -> Self {
+        Vec3::new(a[0], a[1], a[2])
+    }
+}
