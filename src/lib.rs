@@ -63,7 +63,7 @@ pub mod scene;
 pub mod spans;
 pub mod vec3;
 
-pub use pixel::{HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
+pub use pixel::{FixedShade, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
 pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
 pub use presets::{exponent_series, EXPONENT_SERIES_SIZE};
 pub use render::{Render, RenderError};

@@ -76,6 +76,15 @@ pub struct Shade {
     pub hit: HitRecord,
 }
 
+/// What an integer-only path knows about one pixel, handed to [`Pixel::encode_fixed`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub struct FixedShade {
+    /// Linear colour per channel as unsigned 16.16 fixed point (`65536` is 1.0), saturated.
+    pub color: [u32; 3],
+    /// The hit record; filled in only for formats whose [`Pixel::NEEDS_HITS`] is true.
+    pub hit: HitRecord,
+}
+
 /// A pixel format the row renderers can write.
 ///
 /// Implemented for [`Rgb888`], [`Rgb565`], [`LinearRgb`] and [`HitRecord`].
@@ -83,8 +92,19 @@ pub trait Pixel: Copy {
     /// Whether [`Shade::hit`] must be filled in; formats that only store colour leave it
     /// `false` so the kernel skips the bookkeeping.
     const NEEDS_HITS: bool = false;
-    /// Encodes one shaded sample.
+    /// Encodes one sample shaded in `f32`.
     fn encode(shade: &Shade) -> Self;
+    /// Encodes one sample shaded in fixed point, with integer arithmetic only (except for
+    /// [`LinearRgb`], a host-side test format, which converts to `f32`).
+    fn encode_fixed(shade: &FixedShade) -> Self;
+}
+
+/// The fixed-point twin of [`quantize`]: `⌊clamp(v, 0, 1)·max + ½⌋` for `v` in unsigned
+/// 16.16, in integers only.
+#[inline(always)]
+pub fn quantize_fixed(v: u32, max: u32) -> u16 {
+    let v = v.min(1 << 16);
+    ((v * max + (1 << 15)) >> 16) as u16
 }
 
 /// `⌊clamp(c, 0, 1)·max + ½⌋`: round to the nearest of `max + 1` levels. NaN gives 0.
@@ -104,15 +124,42 @@ impl Pixel for Rgb888 {
             b: quantize(s.color.b, 255.0) as u8,
         }
     }
+    #[inline(always)]
+    fn encode_fixed(s: &FixedShade) -> Self {
+        let [r, g, b] = s.color;
+        Rgb888 {
+            r: quantize_fixed(r, 255) as u8,
+            g: quantize_fixed(g, 255) as u8,
+            b: quantize_fixed(b, 255) as u8,
+        }
+    }
+}
+
+impl Rgb565 {
+    /// Packs 5-bit red, 6-bit green and 5-bit blue levels.
+    #[inline(always)]
+    pub fn from_levels(r: u16, g: u16, b: u16) -> Self {
+        Rgb565(((r & 0x1f) << 11) | ((g & 0x3f) << 5) | (b & 0x1f))
+    }
 }
 
 impl Pixel for Rgb565 {
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        let r = quantize(s.color.r, 31.0);
-        let g = quantize(s.color.g, 63.0);
-        let b = quantize(s.color.b, 31.0);
-        Rgb565((r << 11) | (g << 5) | b)
+        Rgb565::from_levels(
+            quantize(s.color.r, 31.0),
+            quantize(s.color.g, 63.0),
+            quantize(s.color.b, 31.0),
+        )
+    }
+    #[inline(always)]
+    fn encode_fixed(s: &FixedShade) -> Self {
+        let [r, g, b] = s.color;
+        Rgb565::from_levels(
+            quantize_fixed(r, 31),
+            quantize_fixed(g, 63),
+            quantize_fixed(b, 31),
+        )
     }
 }
 
@@ -121,12 +168,21 @@ impl Pixel for LinearRgb {
     fn encode(s: &Shade) -> Self {
         s.color
     }
+    fn encode_fixed(s: &FixedShade) -> Self {
+        let [r, g, b] = s.color;
+        let f = |v: u32| v as f32 / 65536.0;
+        LinearRgb::new(f(r), f(g), f(b))
+    }
 }
 
 impl Pixel for HitRecord {
     const NEEDS_HITS: bool = true;
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
+        s.hit
+    }
+    #[inline(always)]
+    fn encode_fixed(s: &FixedShade) -> Self {
         s.hit
     }
 }
@@ -144,6 +200,15 @@ mod tests {
         assert_eq!(quantize(0.5 / 255.0 - 1e-6, 255.0), 0);
         assert_eq!(quantize(0.5 / 255.0 + 1e-6, 255.0), 1);
         assert_eq!(quantize(1.0, 63.0), 63);
+        assert_eq!(quantize_fixed(u32::MAX, 255), 255);
+        assert_eq!(quantize_fixed(0, 255), 0);
+        assert_eq!(quantize_fixed(128, 255), 0); // 0.00195 < half a level
+        assert_eq!(quantize_fixed(129, 255), 1);
+        // Both rules agree wherever the f32 value is exactly a 16.16 value.
+        for raw in (0..=65536u32).step_by(97) {
+            assert_eq!(quantize_fixed(raw, 255), quantize(raw as f32 / 65536.0, 255.0));
+            assert_eq!(quantize_fixed(raw, 31), quantize(raw as f32 / 65536.0, 31.0));
+        }
     }
 
     #[test]
