@@ -192,7 +192,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 /// Nearest intersection with `t > ε` of the ray `origin + t·dir` (`dir` unit) with the sphere
 /// at offset `oc = origin − center`: `(t, hit)`.
 #[inline(always)]
-pub(crate) fn nearest_hit<T: Lane>(oc: Vec3<T>, dir: Vec3<T>, radius_sq: T, eps: T) -> (T, T::Mask) {
+pub(crate) fn nearest_hit<T: Lane>(
+    oc: Vec3<T>,
+    dir: Vec3<T>,
+    radius_sq: T,
+    eps: T,
+) -> (T, T::Mask) {
     let b = oc.dot(dir);
     let f = oc - dir * b;
     let disc = radius_sq - f.dot(f);

@@ -127,10 +127,18 @@ mod tests {
 
     #[test]
     fn pow_accuracy() {
-        for n in [1.0f32, 2.0, 2.5, 10.0, 37.3, 50.0, 250.0, 1250.0, 5000.0, 10000.0] {
+        for n in [
+            1.0f32, 2.0, 2.5, 10.0, 37.3, 50.0, 250.0, 1250.0, 5000.0, 10000.0,
+        ] {
             let (near, far) = max_rel_errors(n);
-            assert!(near < 1.5e-6, "n={n}: max relative error {near:e} for results >= 1e-3");
-            assert!(far < 3.5e-6, "n={n}: max relative error {far:e} for results in [1e-6, 1e-3)");
+            assert!(
+                near < 1.5e-6,
+                "n={n}: max relative error {near:e} for results >= 1e-3"
+            );
+            assert!(
+                far < 3.5e-6,
+                "n={n}: max relative error {far:e} for results in [1e-6, 1e-3)"
+            );
         }
     }
 

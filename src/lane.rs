@@ -227,7 +227,8 @@ macro_rules! wide_lane {
             fn split_exponent(self) -> (Self, Self) {
                 let bits: $i = wide::bytemuck::cast(self);
                 let e = ((bits >> 23) & <$i>::splat(0xff)) - <$i>::splat(EXP_BIAS);
-                let m_bits = (bits & <$i>::splat(MANTISSA_MASK as i32)) | <$i>::splat(ONE_BITS as i32);
+                let m_bits =
+                    (bits & <$i>::splat(MANTISSA_MASK as i32)) | <$i>::splat(ONE_BITS as i32);
                 (wide::bytemuck::cast(m_bits), <$t>::$from_int(e))
             }
             #[inline(always)]
@@ -247,7 +248,15 @@ mod tests {
     use super::*;
 
     fn check_exact<L: Lane>() {
-        for &x in &[1.0f32, 1.5, 0.75, 3.0e-20, 7.5e30, 0.999_999_94, 1.000_000_1] {
+        for &x in &[
+            1.0f32,
+            1.5,
+            0.75,
+            3.0e-20,
+            7.5e30,
+            0.999_999_94,
+            1.000_000_1,
+        ] {
             let (m, e) = L::splat(x).split_exponent();
             let (ms, es) = x.split_exponent();
             assert_eq!(m.lane(0).to_bits(), ms.to_bits(), "mantissa of {x}");

@@ -51,8 +51,8 @@
 #![deny(missing_docs)]
 
 pub mod brdf;
-pub mod float_math;
 mod float_kernel;
+pub mod float_math;
 pub mod lane;
 pub mod pixel;
 pub mod prepare;
@@ -67,6 +67,8 @@ pub use pixel::{FixedShade, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
 pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
 pub use presets::{exponent_series, EXPONENT_SERIES_SIZE};
 pub use render::{Render, RenderError};
-pub use scene::{Camera, Item, ItemKind, Light, Material, Model, Problem, Scene, SceneError, Sphere};
+pub use scene::{
+    Camera, Item, ItemKind, Light, Material, Model, Problem, Scene, SceneError, Sphere,
+};
 pub use spans::Span;
 pub use vec3::Vec3;

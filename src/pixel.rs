@@ -206,8 +206,14 @@ mod tests {
         assert_eq!(quantize_fixed(129, 255), 1);
         // Both rules agree wherever the f32 value is exactly a 16.16 value.
         for raw in (0..=65536u32).step_by(97) {
-            assert_eq!(quantize_fixed(raw, 255), quantize(raw as f32 / 65536.0, 255.0));
-            assert_eq!(quantize_fixed(raw, 31), quantize(raw as f32 / 65536.0, 31.0));
+            assert_eq!(
+                quantize_fixed(raw, 255),
+                quantize(raw as f32 / 65536.0, 255.0)
+            );
+            assert_eq!(
+                quantize_fixed(raw, 31),
+                quantize(raw as f32 / 65536.0, 31.0)
+            );
         }
     }
 

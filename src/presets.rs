@@ -30,7 +30,13 @@ pub fn exponent_series() -> Result<Scene, SceneError> {
         color: LinearRgb::new(1.0, 1.0, 1.0),
         intensity: 5.0,
     })?;
-    let series = [(-4.0, 0.04, 2.0), (-2.0, 0.08, 10.0), (0.0, 0.1, 50.0), (2.0, 0.15, 250.0), (4.0, 0.2, 1250.0)];
+    let series = [
+        (-4.0, 0.04, 2.0),
+        (-2.0, 0.08, 10.0),
+        (0.0, 0.1, 50.0),
+        (2.0, 0.15, 250.0),
+        (4.0, 0.2, 1250.0),
+    ];
     for (x, ks, n) in series {
         scene.add_sphere(Sphere {
             center: Vec3::new(x, 1.0, 0.0),

@@ -1,1 +1,265 @@
-//! placeholder
+//! The `f64` reference renderer: the truth every path is measured against.
+//!
+//! Written straight from the formulas of the model ([`crate::brdf`], [`crate::Camera`],
+//! [`crate::Light`]), one pixel at a time, in `f64`, sharing no code with the kernels: its own
+//! vector type, its own camera basis, the textbook quadratic, `libm`'s correctly rounded `pow`.
+//! It reads the scene's numbers and the one model constant every path shares,
+//! [`Scene::ray_epsilon`](crate::Scene::ray_epsilon). It is slow on purpose (no spans, no
+//! prepare step), and it is not meant for firmware, though it is `no_std` like the rest.
+
+use crate::pixel::HitRecord;
+use crate::render::RenderError;
+use crate::scene::{Light, Model, Scene};
+
+/// One pixel as the reference sees it.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct RefPixel {
+    /// Linear colour, unclamped.
+    pub color: [f64; 3],
+    /// Which sphere the primary ray hit and which lights were blocked there.
+    pub hit: HitRecord,
+}
+
+/// The arriving-light cap of the model (see `MAX_ARRIVING` in the prepare step): a point
+/// light at zero distance delivers this much, not infinity.
+const ARRIVING_CAP: f64 = 1.0e30;
+
+#[derive(Clone, Copy, Debug, Default)]
+struct D3 {
+    x: f64,
+    y: f64,
+    z: f64,
+}
+
+impl D3 {
+    fn of(v: crate::Vec3) -> D3 {
+        D3 {
+            x: v.x as f64,
+            y: v.y as f64,
+            z: v.z as f64,
+        }
+    }
+    fn add(self, o: D3) -> D3 {
+        D3 {
+            x: self.x + o.x,
+            y: self.y + o.y,
+            z: self.z + o.z,
+        }
+    }
+    fn sub(self, o: D3) -> D3 {
+        D3 {
+            x: self.x - o.x,
+            y: self.y - o.y,
+            z: self.z - o.z,
+        }
+    }
+    fn mul(self, s: f64) -> D3 {
+        D3 {
+            x: self.x * s,
+            y: self.y * s,
+            z: self.z * s,
+        }
+    }
+    fn dot(self, o: D3) -> f64 {
+        self.x * o.x + self.y * o.y + self.z * o.z
+    }
+    fn cross(self, o: D3) -> D3 {
+        D3 {
+            x: self.y * o.z - self.z * o.y,
+            y: self.z * o.x - self.x * o.z,
+            z: self.x * o.y - self.y * o.x,
+        }
+    }
+    fn len(self) -> f64 {
+        libm::sqrt(self.dot(self))
+    }
+    fn unit(self) -> D3 {
+        let l = self.len();
+        if l > 0.0 {
+            self.mul(1.0 / l)
+        } else {
+            D3::default()
+        }
+    }
+}
+
+/// Nearest `t > eps` where `origin + t·dir` (`dir` unit) meets the sphere, textbook quadratic.
+fn intersect(origin: D3, dir: D3, center: D3, radius: f64, eps: f64) -> Option<f64> {
+    let oc = origin.sub(center);
+    let b = oc.dot(dir);
+    let c = oc.dot(oc) - radius * radius;
+    let disc = b * b - c;
+    if disc < 0.0 {
+        return None;
+    }
+    let root = libm::sqrt(disc);
+    let (t0, t1) = (-b - root, -b + root);
+    if t0 > eps {
+        Some(t0)
+    } else if t1 > eps {
+        Some(t1)
+    } else {
+        None
+    }
+}
+
+/// The reference colour and hit record of pixel `(x, y)` of a `width × height` image.
+pub fn shade_pixel<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    width: u32,
+    height: u32,
+    x: u32,
+    y: u32,
+) -> RefPixel {
+    let cam = scene.camera();
+    let eye = D3::of(cam.position);
+    let forward = D3::of(cam.look_at).sub(eye).unit();
+    let right = forward.cross(D3::of(cam.up)).unit();
+    let up = right.cross(forward);
+    let tan = libm::tan((cam.vfov_degrees as f64).to_radians() / 2.0);
+    let (w, h) = (width as f64, height as f64);
+    let px = (2.0 * (x as f64 + 0.5) / w - 1.0) * (w / h) * tan;
+    let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * tan;
+    let dir = right.mul(px).add(up.mul(py)).add(forward).unit();
+    let eps = scene.ray_epsilon() as f64;
+
+    let mut nearest: Option<(usize, f64)> = None;
+    for (k, s) in scene.spheres().iter().enumerate() {
+        if let Some(t) = intersect(eye, dir, D3::of(s.center), s.radius as f64, eps) {
+            if nearest.is_none_or(|(_, best)| t < best) {
+                nearest = Some((k, t));
+            }
+        }
+    }
+    let bg = scene.background();
+    let Some((k, t)) = nearest else {
+        return RefPixel {
+            color: [bg.r as f64, bg.g as f64, bg.b as f64],
+            hit: HitRecord::default(),
+        };
+    };
+    let sphere = &scene.spheres()[k];
+    let m = &sphere.material;
+    let p = eye.add(dir.mul(t));
+    let n = p.sub(D3::of(sphere.center)).mul(1.0 / sphere.radius as f64);
+    let v = dir.mul(-1.0);
+    let shadow_origin = p.add(n.mul(eps));
+
+    let mut diffuse = [0.0f64; 3];
+    let mut specular = [0.0f64; 3];
+    let mut shadowed = 0u32;
+    for (li, light) in scene.lights().iter().enumerate() {
+        let (l, arriving, t_max) = match *light {
+            Light::Distant {
+                direction,
+                color,
+                intensity,
+            } => {
+                let i = intensity as f64;
+                (
+                    D3::of(direction).unit().mul(-1.0),
+                    [color.r as f64 * i, color.g as f64 * i, color.b as f64 * i],
+                    f64::INFINITY,
+                )
+            }
+            Light::Point {
+                position,
+                color,
+                intensity,
+            } => {
+                let lv = D3::of(position).sub(p);
+                let dist = lv.len();
+                let scale = intensity as f64 / (4.0 * core::f64::consts::PI * dist * dist);
+                let a = |c: f32| {
+                    let v = c as f64 * scale;
+                    if v.is_nan() || v > ARRIVING_CAP {
+                        ARRIVING_CAP
+                    } else {
+                        v
+                    }
+                };
+                (lv.unit(), [a(color.r), a(color.g), a(color.b)], dist)
+            }
+        };
+        let blocked = scene.spheres().iter().any(|s| {
+            intersect(shadow_origin, l, D3::of(s.center), s.radius as f64, eps)
+                .is_some_and(|ts| ts < t_max)
+        });
+        if blocked {
+            if li < 32 {
+                shadowed |= 1 << li;
+            }
+            continue;
+        }
+        let n_dot_l = n.dot(l).max(0.0);
+        let cosine = match m.model {
+            Model::BlinnPhong => {
+                let hv = l.add(v);
+                if hv.len() > 0.0 {
+                    n.dot(hv.unit())
+                } else {
+                    0.0
+                }
+            }
+            _ => {
+                let travel = l.mul(-1.0);
+                let r = travel.sub(n.mul(2.0 * n.dot(travel)));
+                r.dot(v)
+            }
+        };
+        let lobe = if cosine > 0.0 {
+            libm::pow(cosine.min(1.0), m.shininess as f64)
+        } else {
+            0.0
+        };
+        for c in 0..3 {
+            diffuse[c] += arriving[c] * n_dot_l;
+            specular[c] += arriving[c] * lobe;
+        }
+    }
+    let albedo = [m.albedo.r as f64, m.albedo.g as f64, m.albedo.b as f64];
+    let (kd, ks) = (m.kd as f64, m.ks as f64);
+    let mut color = [0.0; 3];
+    for c in 0..3 {
+        color[c] = kd * albedo[c] * diffuse[c] + ks * specular[c];
+    }
+    RefPixel {
+        color,
+        hit: HitRecord {
+            sphere: Some(k as u16),
+            shadowed,
+        },
+    }
+}
+
+/// Renders a whole `width × height` frame, row-major, into `out`.
+pub fn render_frame<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    width: u32,
+    height: u32,
+    out: &mut [RefPixel],
+) -> Result<(), RenderError> {
+    if width == 0 || height == 0 || width > crate::MAX_DIMENSION || height > crate::MAX_DIMENSION {
+        return Err(RenderError::BadSize { width, height });
+    }
+    let expected = width as usize * height as usize;
+    if out.len() != expected {
+        return Err(RenderError::FrameLength {
+            expected,
+            got: out.len(),
+        });
+    }
+    for (y, row) in out.chunks_exact_mut(width as usize).enumerate() {
+        for (x, px) in row.iter_mut().enumerate() {
+            *px = shade_pixel(scene, width, height, x as u32, y as u32);
+        }
+    }
+    Ok(())
+}
+
+/// The encode rule of the paths, in `f64`: `⌊clamp(c, 0, 1)·max + ½⌋`.
+pub fn quantize(c: f64, max: f64) -> u16 {
+    let c = if c > 0.0 { c } else { 0.0 };
+    let c = if c < 1.0 { c } else { 1.0 };
+    libm::floor(c * max + 0.5) as u16
+}

@@ -1,0 +1,204 @@
+//! Shared test helpers: deterministic random scenes (proptest strategies run from a fixed
+//! seed) and comparisons against the f64 reference.
+#![allow(dead_code)]
+
+use proptest::prelude::*;
+use proptest::strategy::ValueTree;
+use proptest::test_runner::{Config, RngSeed, TestRunner};
+use shadeline::reference::{self, RefPixel};
+use shadeline::*;
+
+/// Capacities used by the random scenes.
+pub type TestScene = Scene<8, 4>;
+
+fn vec3(range: f32) -> impl Strategy<Value = Vec3> {
+    (-range..range, -range..range, -range..range).prop_map(|(x, y, z)| Vec3::new(x, y, z))
+}
+
+fn color(lo: f32, hi: f32) -> impl Strategy<Value = LinearRgb> {
+    (lo..hi, lo..hi, lo..hi).prop_map(|(r, g, b)| LinearRgb::new(r, g, b))
+}
+
+fn material() -> impl Strategy<Value = Material> {
+    (
+        color(0.0, 1.0),
+        0.0f32..1.0,
+        0.0f32..1.0,
+        0.0f32..3.3,
+        any::<bool>(),
+    )
+        .prop_map(|(albedo, kd, ks, log_n, blinn)| Material {
+            albedo,
+            kd,
+            ks,
+            shininess: 10f32.powf(log_n),
+            model: if blinn {
+                Model::BlinnPhong
+            } else {
+                Model::Phong
+            },
+        })
+}
+
+fn sphere() -> impl Strategy<Value = Sphere> {
+    (vec3(2.5), 0.3f32..1.8, material()).prop_map(|(center, radius, material)| Sphere {
+        center,
+        radius,
+        material,
+    })
+}
+
+fn light() -> impl Strategy<Value = Light> {
+    prop_oneof![
+        (vec3(1.0), color(0.2, 1.0), 0.5f32..4.0).prop_filter_map(
+            "zero direction",
+            |(direction, color, intensity)| (direction.dot(direction) > 1e-4).then_some(
+                Light::Distant {
+                    direction,
+                    color,
+                    intensity
+                }
+            )
+        ),
+        (vec3(8.0), color(0.2, 1.0), 0.5f32..3.0).prop_map(|(position, color, k)| {
+            // Scale the power so that about `k` arrives at the origin.
+            let d2 = position.dot(position).max(1.0);
+            Light::Point {
+                position,
+                color,
+                intensity: 4.0 * core::f32::consts::PI * d2 * k,
+            }
+        }),
+    ]
+}
+
+/// A random valid scene: a camera 6–11 units from the origin looking near it, 1–6 spheres,
+/// 1–3 lights (distant and point), any mix of Phong and Blinn-Phong materials.
+pub fn scene_strategy() -> impl Strategy<Value = TestScene> {
+    (
+        (
+            -1.0f32..1.0,
+            -0.6f32..0.6,
+            6.0f32..11.0,
+            vec3(0.5),
+            25.0f32..70.0,
+        ),
+        color(0.0, 1.0),
+        prop::collection::vec(sphere(), 1..=6),
+        prop::collection::vec(light(), 1..=3),
+    )
+        .prop_map(
+            |((angle, elevation, dist, target, vfov), bg, spheres, lights)| {
+                let a = angle * core::f32::consts::PI;
+                let position = Vec3::new(
+                    dist * a.sin() * (1.0 - elevation * elevation).sqrt(),
+                    dist * elevation,
+                    dist * a.cos() * (1.0 - elevation * elevation).sqrt(),
+                );
+                let camera = Camera {
+                    position,
+                    look_at: target,
+                    up: Vec3::new(0.0, 1.0, 0.0),
+                    vfov_degrees: vfov,
+                };
+                let mut scene = TestScene::new(camera, bg).expect("valid camera");
+                for s in spheres {
+                    scene.add_sphere(s).expect("valid sphere");
+                }
+                for l in lights {
+                    scene.add_light(l).expect("valid light");
+                }
+                scene
+            },
+        )
+}
+
+/// `n` random scenes from a fixed seed: the same scenes on every run and every machine.
+pub fn random_scenes(n: usize, seed: u64) -> Vec<TestScene> {
+    let config = Config {
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner = TestRunner::new(config);
+    let strategy = scene_strategy();
+    (0..n)
+        .map(|_| {
+            strategy
+                .new_tree(&mut runner)
+                .expect("strategy generates")
+                .current()
+        })
+        .collect()
+}
+
+/// Renders a frame of any path into a pixel format.
+pub fn frame<P: Pixel + Default, R: Render>(r: &R) -> Vec<P> {
+    let mut out = vec![P::default(); r.width() as usize * r.height() as usize];
+    r.render_frame(&mut out).expect("renders");
+    out
+}
+
+/// The reference frame.
+pub fn reference_frame<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    w: u32,
+    h: u32,
+) -> Vec<RefPixel> {
+    let mut out = vec![RefPixel::default(); w as usize * h as usize];
+    reference::render_frame(scene, w, h, &mut out).expect("reference renders");
+    out
+}
+
+/// How a path's 8-bit frame compares to the reference.
+#[derive(Debug, Default, Clone, Copy)]
+pub struct Agreement {
+    /// Pixels in the frame.
+    pub pixels: usize,
+    /// Pixels whose ray decisions (sphere hit, lights blocked) differ from the reference.
+    pub decisions_differ: usize,
+    /// Largest channel error in levels, over pixels whose decisions agree.
+    pub max_levels: u16,
+    /// Pixels (whose decisions agree) with every channel within one level.
+    pub within_one: usize,
+}
+
+impl Agreement {
+    /// Share of the frame whose decisions differ.
+    pub fn differ_share(&self) -> f64 {
+        self.decisions_differ as f64 / self.pixels as f64
+    }
+    /// Share of agreeing pixels within one level.
+    pub fn within_one_share(&self) -> f64 {
+        self.within_one as f64 / (self.pixels - self.decisions_differ).max(1) as f64
+    }
+}
+
+/// Compares a path (its 8-bit colour and its hit records) with the reference.
+pub fn agreement<R: Render>(r: &R, reference: &[RefPixel]) -> Agreement {
+    let colors: Vec<Rgb888> = frame(r);
+    let hits: Vec<HitRecord> = frame(r);
+    let mut a = Agreement {
+        pixels: colors.len(),
+        ..Agreement::default()
+    };
+    for ((c, h), want) in colors.iter().zip(&hits).zip(reference) {
+        if *h != want.hit {
+            a.decisions_differ += 1;
+            continue;
+        }
+        let levels = [c.r, c.g, c.b]
+            .iter()
+            .zip(want.color)
+            .map(|(&got, w)| {
+                (got as i32 - reference::quantize(w, 255.0) as i32).unsigned_abs() as u16
+            })
+            .max()
+            .unwrap_or(0);
+        a.max_levels = a.max_levels.max(levels);
+        if levels <= 1 {
+            a.within_one += 1;
+        }
+    }
+    a
+}
