@@ -1,1 +1,2 @@
+//! The `shadeline` command line (in progress).
 fn main() {}

@@ -1,0 +1,386 @@
+//! The scene file: TOML text → a validated [`FileScene`] and an image size, or one error that
+//! names the line, the column and the key.
+//!
+//! The format is the one of `scenes/exponent-series.toml`:
+//!
+//! | table | keys |
+//! |---|---|
+//! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear |
+//! | `[camera]` | `position`, `look_at`, `up` = `[x, y, z]`, `vfov` (degrees) |
+//! | `[[light]]` | `type = "distant"` with `direction`, or `type = "point"` with `position`; both with `color`, `intensity` |
+//! | `[[sphere]]` | `center`, `radius`, `albedo`, `kd`, `ks`, `shininess`, optional `model = "phong" \| "blinn-phong"` |
+//!
+//! Parsing has three stages, each of which reports through [`SceneFileError`]: the TOML syntax
+//! and a key index ([`KeyIndex`]); the typed structs (serde, unknown keys refused); and the
+//! core's own validation ([`Scene::new`], `add_sphere`, `add_light`, [`Prepared::new`] for the
+//! size), whose errors are placed at the key they name.
+
+use crate::toml_keys::KeyIndex;
+use serde::Deserialize;
+use shadeline::{
+    Camera, Item, ItemKind, Light, LinearRgb, Material, Model, Prepared, RenderError, Scalar,
+    Scene, SceneError, Sphere, Vec3, MAX_DIMENSION,
+};
+use std::fmt;
+use std::ops::Range;
+
+/// Most spheres a scene file may hold.
+pub const MAX_SPHERES: usize = 64;
+/// Most lights a scene file may hold.
+pub const MAX_LIGHTS: usize = 16;
+
+/// The scene type the harness reads files into and renders.
+pub type FileScene = Scene<MAX_SPHERES, MAX_LIGHTS>;
+
+/// A parsed, validated scene file.
+#[derive(Clone, Debug)]
+pub struct SceneFile {
+    /// The scene.
+    pub scene: FileScene,
+    /// `image.width`, in pixels.
+    pub width: u32,
+    /// `image.height`, in pixels.
+    pub height: u32,
+}
+
+/// Why a scene file was refused: where (1-based line and column, in characters), which key,
+/// and what is wrong.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct SceneFileError {
+    /// 1-based line.
+    pub line: usize,
+    /// 1-based column, counted in characters.
+    pub column: usize,
+    /// The dotted key path the error is about (`sphere[2].radius`), if it is about one.
+    pub key: Option<String>,
+    /// What is wrong, as one sentence without a trailing period.
+    pub message: String,
+}
+
+impl SceneFileError {
+    /// An error at byte `offset` of `text`.
+    pub fn at(text: &str, offset: usize, key: Option<String>, message: String) -> Self {
+        let (line, column) = line_column(text, offset);
+        SceneFileError {
+            line,
+            column,
+            key,
+            message,
+        }
+    }
+}
+
+impl fmt::Display for SceneFileError {
+    /// `LINE:COL: error: MESSAGE (key `KEY`)`; the caller puts the file name in front.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}: error: {}", self.line, self.column, self.message)?;
+        if let Some(key) = &self.key {
+            write!(f, " (key `{key}`)")?;
+        }
+        Ok(())
+    }
+}
+
+impl std::error::Error for SceneFileError {}
+
+/// The 1-based line and character column of byte `offset` (clamped to the text, and moved
+/// back to a character boundary).
+pub fn line_column(text: &str, offset: usize) -> (usize, usize) {
+    let mut offset = offset.min(text.len());
+    while !text.is_char_boundary(offset) {
+        offset -= 1;
+    }
+    let before = &text[..offset];
+    let line = before.matches('\n').count() + 1;
+    let line_start = before.rfind('\n').map_or(0, |i| i + 1);
+    (line, before[line_start..].chars().count() + 1)
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawFile {
+    image: RawImage,
+    camera: RawCamera,
+    #[serde(default)]
+    light: Vec<RawLight>,
+    #[serde(default)]
+    sphere: Vec<RawSphere>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawImage {
+    width: u32,
+    height: u32,
+    background: [f64; 3],
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawCamera {
+    position: [f64; 3],
+    look_at: [f64; 3],
+    up: [f64; 3],
+    vfov: f64,
+}
+
+#[derive(Deserialize, Clone, Copy, PartialEq, Eq)]
+#[serde(rename_all = "lowercase")]
+enum LightType {
+    Distant,
+    Point,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLight {
+    #[serde(rename = "type")]
+    kind: LightType,
+    direction: Option<[f64; 3]>,
+    position: Option<[f64; 3]>,
+    color: [f64; 3],
+    intensity: f64,
+}
+
+#[derive(Deserialize, Clone, Copy, Default)]
+#[serde(rename_all = "kebab-case")]
+enum RawModel {
+    #[default]
+    Phong,
+    BlinnPhong,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawSphere {
+    center: [f64; 3],
+    radius: f64,
+    albedo: [f64; 3],
+    kd: f64,
+    ks: f64,
+    shininess: f64,
+    #[serde(default)]
+    model: RawModel,
+}
+
+/// An `f64` from the file as the core's `f32`. A finite number too large for `f32` becomes
+/// `±f32::MAX` rather than infinity, so the core reports it as too large, not as not finite.
+fn narrow(v: f64) -> f32 {
+    if v.is_finite() {
+        v.clamp(-f64::from(f32::MAX), f64::from(f32::MAX)) as f32
+    } else {
+        v as f32
+    }
+}
+
+fn vec3([x, y, z]: [f64; 3]) -> Vec3 {
+    Vec3::new(narrow(x), narrow(y), narrow(z))
+}
+
+fn rgb([r, g, b]: [f64; 3]) -> LinearRgb {
+    LinearRgb::new(narrow(r), narrow(g), narrow(b))
+}
+
+/// Parses and validates a scene file's text.
+///
+/// Every problem, from a TOML syntax error to a negative radius or an image width of 0, comes
+/// back as a [`SceneFileError`]; this never panics.
+pub fn parse_scene(text: &str) -> Result<SceneFile, SceneFileError> {
+    let index = KeyIndex::parse(text).map_err(|e| syntax_error(text, &e))?;
+    let raw: RawFile = toml::from_str(text).map_err(|e| toml_error(text, &index, &e))?;
+    let place = Placer {
+        text,
+        index: &index,
+    };
+    build(&raw, &place)
+}
+
+/// A TOML syntax error: toml's message at toml's span. A duplicated key is named from the
+/// text (its path is not known yet: the document did not parse).
+fn syntax_error(text: &str, e: &toml::de::Error) -> SceneFileError {
+    let span = e.span().unwrap_or(0..0);
+    let mut message = format!("invalid TOML: {}", one_line(e.message()));
+    if message.ends_with("duplicate key") {
+        if let Some(name) = text.get(span.clone()) {
+            message = format!("{message} `{}`", name.trim());
+        }
+    }
+    SceneFileError::at(text, span.start, None, message)
+}
+
+fn one_line(message: &str) -> String {
+    message.trim().replace('\n', "; ")
+}
+
+/// Maps a serde error from the typed structs to a [`SceneFileError`], finding the key from
+/// its span, and rewording serde's Rust-side vocabulary into the file's.
+fn toml_error(text: &str, index: &KeyIndex, e: &toml::de::Error) -> SceneFileError {
+    let span = e.span().unwrap_or(0..0);
+    let entry = index.innermost_at(span.start);
+    let mut key = entry.map(|entry| entry.path.clone());
+    let message = one_line(e.message());
+    // A datetime reaches serde as a map; anything else that does is a table.
+    let found = match entry.map(|e| e.kind) {
+        Some("datetime") => "a datetime",
+        _ => "a table",
+    };
+    let message = message.replace("invalid type: map", &format!("invalid type: {found}"));
+    let message = message.replace("unknown variant", "unknown value");
+    let message = match message.find("expected struct ") {
+        Some(at) => format!("{}expected a table", &message[..at]),
+        None => message,
+    };
+    // serde speaks of fields; the file has keys. A missing key is reported on its table,
+    // so the key path is completed with the missing name.
+    let message = if let Some(rest) = message.strip_prefix("missing field ") {
+        let name = rest.trim_matches('`');
+        key = Some(match key {
+            Some(table) => format!("{table}.{name}"),
+            None => name.to_string(),
+        });
+        format!("missing key {rest}")
+    } else if let Some(rest) = message.strip_prefix("unknown field ") {
+        // toml reports an unknown key at the key itself, which has no entry of its own.
+        let name = rest.split('`').nth(1).unwrap_or_default();
+        key = index.named_after(name, span.start).map(|e| e.path.clone());
+        format!(
+            "unknown key {}",
+            rest.replace("expected one of", "expected one of the keys")
+        )
+    } else {
+        message
+    };
+    SceneFileError::at(text, span.start, key, message)
+}
+
+/// Places validation errors at the key they are about.
+struct Placer<'a> {
+    text: &'a str,
+    index: &'a KeyIndex,
+}
+
+impl Placer<'_> {
+    /// An error about `path`, at its value (or, if the file lacks it, at the nearest
+    /// enclosing key that the file has).
+    fn error(&self, path: &str, message: String) -> SceneFileError {
+        let mut probe = path;
+        let span: Range<usize> = loop {
+            if let Some(entry) = self.index.get(probe) {
+                break entry.value.clone();
+            }
+            match probe.rfind(['.', '[']) {
+                Some(cut) => probe = &probe[..cut],
+                None => break 0..0,
+            }
+        };
+        SceneFileError::at(self.text, span.start, Some(path.to_string()), message)
+    }
+
+    fn scene_error(&self, e: &SceneError) -> SceneFileError {
+        let path = match *e {
+            SceneError::Invalid { item, field, .. } => match item {
+                Item::Camera => format!("camera.{field}"),
+                Item::Background => format!("image.{field}"),
+                Item::Sphere(i) => format!("sphere[{i}].{field}"),
+                Item::Light(i) => format!("light[{i}].{field}"),
+            },
+            SceneError::CapacityExceeded { kind, capacity } => match kind {
+                ItemKind::Sphere => format!("sphere[{capacity}]"),
+                ItemKind::Light => format!("light[{capacity}]"),
+            },
+            // `SceneError` is non-exhaustive: a future variant is still reported, at the top.
+            _ => String::new(),
+        };
+        self.error(&path, e.to_string())
+    }
+}
+
+fn build(raw: &RawFile, place: &Placer<'_>) -> Result<SceneFile, SceneFileError> {
+    let camera = Camera {
+        position: vec3(raw.camera.position),
+        look_at: vec3(raw.camera.look_at),
+        up: vec3(raw.camera.up),
+        vfov_degrees: narrow(raw.camera.vfov),
+    };
+    let background = rgb(raw.image.background);
+    let mut scene = FileScene::new(camera, background).map_err(|e| place.scene_error(&e))?;
+    for (i, l) in raw.light.iter().enumerate() {
+        let light = light(l, i, place)?;
+        scene.add_light(light).map_err(|e| place.scene_error(&e))?;
+    }
+    for s in &raw.sphere {
+        let sphere = Sphere {
+            center: vec3(s.center),
+            radius: narrow(s.radius),
+            material: Material {
+                albedo: rgb(s.albedo),
+                kd: narrow(s.kd),
+                ks: narrow(s.ks),
+                shininess: narrow(s.shininess),
+                model: match s.model {
+                    RawModel::Phong => Model::Phong,
+                    RawModel::BlinnPhong => Model::BlinnPhong,
+                },
+            },
+        };
+        scene
+            .add_sphere(sphere)
+            .map_err(|e| place.scene_error(&e))?;
+    }
+    let (width, height) = (raw.image.width, raw.image.height);
+    check_size(&scene, width, height).map_err(|e| {
+        let key = if width == 0 || width > MAX_DIMENSION {
+            "image.width"
+        } else {
+            "image.height"
+        };
+        place.error(key, e.to_string())
+    })?;
+    Ok(SceneFile {
+        scene,
+        width,
+        height,
+    })
+}
+
+/// Asks the core whether it renders this size, so the file and the renderer agree on limits.
+pub fn check_size(scene: &FileScene, width: u32, height: u32) -> Result<(), RenderError> {
+    Prepared::<Scalar, MAX_SPHERES, MAX_LIGHTS>::new(scene, width, height).map(|_| ())
+}
+
+/// A light from its table, checking that its keys fit its `type`.
+fn light(l: &RawLight, i: usize, place: &Placer<'_>) -> Result<Light, SceneFileError> {
+    let (needs, refuses, kind) = match l.kind {
+        LightType::Distant => ("direction", "position", "distant"),
+        LightType::Point => ("position", "direction", "point"),
+    };
+    let (given, extra) = match l.kind {
+        LightType::Distant => (l.direction, l.position),
+        LightType::Point => (l.position, l.direction),
+    };
+    if extra.is_some() {
+        return Err(place.error(
+            &format!("light[{i}].{refuses}"),
+            format!("a {kind} light has no `{refuses}` (it takes `{needs}`)"),
+        ));
+    }
+    let Some(v) = given else {
+        return Err(place.error(
+            &format!("light[{i}].{needs}"),
+            format!("missing key `{needs}` (a {kind} light needs it)"),
+        ));
+    };
+    let (color, intensity) = (rgb(l.color), narrow(l.intensity));
+    Ok(match l.kind {
+        LightType::Distant => Light::Distant {
+            direction: vec3(v),
+            color,
+            intensity,
+        },
+        LightType::Point => Light::Point {
+            position: vec3(v),
+            color,
+            intensity,
+        },
+    })
+}
