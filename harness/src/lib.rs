@@ -1,4 +1,16 @@
-//! The shadeline host harness (library part).
+//! The shadeline host harness: everything the `shadeline` command does, as a library, so the
+//! tests (and later a fuzzer) can call it directly.
+//!
+//! - [`scene_file`]: the TOML scene format → a validated scene, with located errors
+//!   ([`toml_keys`] finds the keys);
+//! - [`paths`]: the list of rendering paths; [`rows`]: rendering rows on threads;
+//! - [`compare`]: measuring the paths against the `f64` reference; [`image`]: PNG output.
+
+pub mod compare;
+pub mod image;
+pub mod paths;
+pub mod rows;
 pub mod scene_file;
 pub mod toml_keys;
+
 pub use scene_file::{parse_scene, FileScene, SceneFile, SceneFileError};

@@ -1,2 +1,222 @@
-//! The `shadeline` command line (in progress).
-fn main() {}
+//! The `shadeline` command: render a scene to PNG on one path, or compare every path with the
+//! `f64` reference.
+//!
+//! ```text
+//! shadeline render  [SCENE.toml] [--path scalar|simd4|simd8|simd] [-o spheres.png]
+//!                   [--threads N] [--width W] [--height H]
+//! shadeline compare [SCENE.toml] [-o compare.png] [--threads N] [--width W] [--height H]
+//! ```
+//!
+//! Without a scene file both use the built-in exponent series (the numbers of
+//! `scenes/exponent-series.toml`, 1024×747). A bad scene file, size or path is reported as
+//! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2; a failure to write the
+//! output is exit code 1.
+
+use clap::builder::PossibleValuesParser;
+use clap::{Args, Parser, Subcommand};
+use shadeline_harness::compare::{self, Row};
+use shadeline_harness::image::RgbImage;
+use shadeline_harness::paths::{self, Path, PATHS};
+use shadeline_harness::rows::default_threads;
+use shadeline_harness::scene_file::{builtin_scene, check_size, parse_scene, SceneFile};
+use std::path::PathBuf;
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Shades Phong-lit spheres one row at a time, with the shadeline core crate.
+#[derive(Parser, Debug)]
+#[command(name = "shadeline", version)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Render a scene to an 8-bit RGB PNG on one path and report the time.
+    Render {
+        #[command(flatten)]
+        input: Input,
+        /// The path: `scalar` (the float reference of the crate, the default), `simd4`,
+        /// `simd8`, or `simd` for the widest.
+        #[arg(long, default_value = "scalar", value_parser = PossibleValuesParser::new(paths::names()))]
+        path: String,
+        /// Where to write the PNG.
+        #[arg(short, long, default_value = "spheres.png")]
+        output: PathBuf,
+    },
+    /// Compare every path with the f64 reference: a table, and a picture of the differences.
+    Compare {
+        #[command(flatten)]
+        input: Input,
+        /// Where to write the comparison PNG.
+        #[arg(short, long, default_value = "compare.png")]
+        output: PathBuf,
+    },
+}
+
+/// What to render, how large, on how many threads.
+#[derive(Args, Debug)]
+struct Input {
+    /// A scene file (TOML); without one, the built-in exponent series.
+    scene: Option<PathBuf>,
+    /// Image width in pixels, instead of the scene file's.
+    #[arg(long)]
+    width: Option<u32>,
+    /// Image height in pixels, instead of the scene file's.
+    #[arg(long)]
+    height: Option<u32>,
+    /// Threads to render rows on [default: the available parallelism].
+    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    threads: Option<u16>,
+}
+
+/// A failure: the message (already naming the file or option) and the exit code.
+struct Failure {
+    message: String,
+    code: u8,
+}
+
+impl Failure {
+    /// Bad input (scene file, size): exit code 2.
+    fn input(message: String) -> Self {
+        Failure { message, code: 2 }
+    }
+    /// The output could not be written: exit code 1.
+    fn output(message: String) -> Self {
+        Failure { message, code: 1 }
+    }
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let result = match cli.command {
+        Command::Render {
+            input,
+            path,
+            output,
+        } => render(&input, &path, &output),
+        Command::Compare { input, output } => run_compare(&input, &output),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(failure) => {
+            eprintln!("{}", failure.message);
+            ExitCode::from(failure.code)
+        }
+    }
+}
+
+impl Input {
+    fn threads(&self) -> usize {
+        self.threads.map_or_else(default_threads, usize::from)
+    }
+
+    /// Reads and checks the scene, applying `--width`/`--height`.
+    fn load(&self) -> Result<SceneFile, Failure> {
+        let mut file = match &self.scene {
+            None => builtin_scene().map_err(|e| Failure::input(format!("error: {e}")))?,
+            Some(path) => read_scene(path)?,
+        };
+        file.width = self.width.unwrap_or(file.width);
+        file.height = self.height.unwrap_or(file.height);
+        check_size(&file.scene, file.width, file.height)
+            .map_err(|e| Failure::input(format!("error: --width/--height: {e}")))?;
+        Ok(file)
+    }
+}
+
+/// Reads a scene file; every problem is one `FILE:LINE:COL: error: …` (or `FILE: error: …`).
+fn read_scene(path: &std::path::Path) -> Result<SceneFile, Failure> {
+    let name = path.display();
+    let bytes = std::fs::read(path)
+        .map_err(|e| Failure::input(format!("{name}: error: cannot read the scene file: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        let valid = e.utf8_error().valid_up_to();
+        let text = String::from_utf8_lossy(&e.as_bytes()[..valid]);
+        let (line, column) = shadeline_harness::scene_file::line_column(&text, valid);
+        let byte = e.as_bytes()[valid];
+        Failure::input(format!(
+            "{name}:{line}:{column}: error: the scene file is not UTF-8 text (byte 0x{byte:02x})"
+        ))
+    })?;
+    parse_scene(&text).map_err(|e| Failure::input(format!("{name}:{e}")))
+}
+
+fn render(input: &Input, path_name: &str, output: &std::path::Path) -> Result<(), Failure> {
+    let file = input.load()?;
+    let threads = input.threads();
+    let path: Path = paths::find(path_name)
+        .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
+    let start = Instant::now();
+    let rgb = (path.prepare)(&file.scene, file.width, file.height)
+        .and_then(|frame| frame.render_rgb(threads))
+        .map_err(|e| Failure::input(format!("error: {e}")))?;
+    let seconds = start.elapsed().as_secs_f64();
+    RgbImage::from_pixels(file.width, file.height, &rgb)
+        .write_png(output)
+        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
+    let megapixels = f64::from(file.width) * f64::from(file.height) / 1e6;
+    println!(
+        "{}x{} {} on {} thread{}: {:.2} ms, {:.1} Mpix/s -> {}",
+        file.width,
+        file.height,
+        path.name,
+        threads,
+        if threads == 1 { "" } else { "s" },
+        seconds * 1e3,
+        megapixels / seconds,
+        output.display()
+    );
+    Ok(())
+}
+
+/// Timed runs per path; the median is reported.
+const RUNS: usize = 3;
+
+fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
+    let file = input.load()?;
+    let threads = input.threads();
+    let (scene, w, h) = (&file.scene, file.width, file.height);
+    let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
+    let reference = compare::render_reference(scene, w, h, threads).map_err(failed)?;
+    let ref_rgb = compare::reference_rgb(&reference);
+    let mut rows = Vec::new();
+    let mut images = Vec::new();
+    for path in PATHS {
+        let mut times = Vec::new();
+        let mut rgb = Vec::new();
+        for _ in 0..RUNS {
+            let start = Instant::now();
+            rgb = (path.prepare)(scene, w, h)
+                .and_then(|frame| frame.render_rgb(threads))
+                .map_err(failed)?;
+            times.push(start.elapsed().as_secs_f64() * 1e3);
+        }
+        times.sort_by(f64::total_cmp);
+        let hits = (path.prepare)(scene, w, h)
+            .and_then(|frame| frame.render_hits(threads))
+            .map_err(failed)?;
+        rows.push(Row {
+            name: path.name,
+            stats: compare::stats(&reference, &ref_rgb, &rgb, &hits),
+            millis: times[RUNS / 2],
+        });
+        images.push(rgb);
+    }
+    println!(
+        "{w}x{h}, {threads} thread{}, against the f64 reference (8-bit levels; time is the median of {RUNS})",
+        if threads == 1 { "" } else { "s" }
+    );
+    print!("{}", compare::table(&rows));
+    compare::picture(w, h, &ref_rgb, &images)
+        .write_png(output)
+        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
+    println!(
+        "wrote {} (top: reference | {}; below each path: |path - reference| x {})",
+        output.display(),
+        PATHS.iter().map(|p| p.name).collect::<Vec<_>>().join(" | "),
+        compare::DIFF_GAIN
+    );
+    Ok(())
+}

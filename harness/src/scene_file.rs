@@ -384,3 +384,22 @@ fn light(l: &RawLight, i: usize, place: &Placer<'_>) -> Result<Light, SceneFileE
         },
     })
 }
+
+/// The built-in exponent series ([`shadeline::exponent_series`]) in a [`FileScene`], at its
+/// scene file's size.
+pub fn builtin_scene() -> Result<SceneFile, SceneError> {
+    let small = shadeline::exponent_series()?;
+    let mut scene = FileScene::new(*small.camera(), small.background())?;
+    for light in small.lights() {
+        scene.add_light(*light)?;
+    }
+    for sphere in small.spheres() {
+        scene.add_sphere(*sphere)?;
+    }
+    let (width, height) = shadeline::EXPONENT_SERIES_SIZE;
+    Ok(SceneFile {
+        scene,
+        width,
+        height,
+    })
+}

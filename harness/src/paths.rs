@@ -1,0 +1,113 @@
+//! The rendering paths the harness knows, by name, behind one object-safe interface.
+//!
+//! [`PATHS`] lists every path of the core crate. A path is anything with a constructor
+//! `new(&scene, width, height) -> Result<Self, RenderError>` that implements
+//! [`shadeline::Render`]; adding one (the fixed-point path, say) is one line in [`PATHS`].
+
+use crate::rows::render_rows;
+use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
+use shadeline::{HitRecord, Prepared, Render, RenderError, Rgb888, Scalar, Simd4, Simd8};
+
+/// A frame prepared on some path, rendered whole into a new buffer on `threads` threads.
+///
+/// [`Render`] has generic methods and so cannot be a trait object; this is the part of it the
+/// harness needs, for the two pixel formats it uses.
+pub trait Frame: Sync {
+    /// The frame as 8-bit RGB.
+    fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, RenderError>;
+    /// The frame's hit records: which sphere each pixel shows and which lights are blocked.
+    fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, RenderError>;
+}
+
+impl<R: Render + Sync> Frame for R {
+    fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, RenderError> {
+        render_rows(self.width(), self.height(), threads, |y, row| {
+            self.render_line(y, row)
+        })
+    }
+    fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, RenderError> {
+        render_rows(self.width(), self.height(), threads, |y, row| {
+            self.render_line(y, row)
+        })
+    }
+}
+
+/// Prepares a scene at a size on one path.
+pub type Prepare = fn(&FileScene, u32, u32) -> Result<Box<dyn Frame>, RenderError>;
+
+/// One path: its name on the command line and in reports, and how to prepare a frame on it.
+#[derive(Clone, Copy)]
+pub struct Path {
+    /// The name (`scalar`, `simd4`, `simd8`).
+    pub name: &'static str,
+    /// Prepares a frame on this path.
+    pub prepare: Prepare,
+}
+
+impl std::fmt::Debug for Path {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(self.name)
+    }
+}
+
+/// Boxes a prepared frame of any path.
+fn boxed<R: Render + Sync + 'static>(
+    frame: Result<R, RenderError>,
+) -> Result<Box<dyn Frame>, RenderError> {
+    Ok(Box::new(frame?))
+}
+
+const S: usize = MAX_SPHERES;
+const L: usize = MAX_LIGHTS;
+
+/// Every path, narrowest first. The first is the default of `render`.
+pub const PATHS: &[Path] = &[
+    path("scalar", |s, w, h| {
+        boxed(Prepared::<Scalar, S, L>::new(s, w, h))
+    }),
+    path("simd4", |s, w, h| {
+        boxed(Prepared::<Simd4, S, L>::new(s, w, h))
+    }),
+    path("simd8", |s, w, h| {
+        boxed(Prepared::<Simd8, S, L>::new(s, w, h))
+    }),
+];
+
+/// A [`Path`] entry of [`PATHS`].
+const fn path(name: &'static str, prepare: Prepare) -> Path {
+    Path { name, prepare }
+}
+
+/// The alias for the widest SIMD path.
+pub const SIMD_ALIAS: (&str, &str) = ("simd", "simd8");
+
+/// The path called `name` (or the alias `simd`).
+pub fn find(name: &str) -> Option<Path> {
+    let name = if name == SIMD_ALIAS.0 {
+        SIMD_ALIAS.1
+    } else {
+        name
+    };
+    PATHS.iter().copied().find(|p| p.name == name)
+}
+
+/// Every name `--path` accepts.
+pub fn names() -> Vec<&'static str> {
+    let mut names: Vec<_> = PATHS.iter().map(|p| p.name).collect();
+    names.push(SIMD_ALIAS.0);
+    names
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn every_name_finds_its_path_and_simd_is_the_widest() {
+        for name in names() {
+            assert!(find(name).is_some(), "{name}");
+        }
+        assert_eq!(find("simd").unwrap().name, "simd8");
+        assert!(find("fast").is_none());
+    }
+}
