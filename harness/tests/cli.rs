@@ -1,0 +1,203 @@
+//! The `shadeline` binary, run as a user would: exit codes, messages, and the PNGs it writes.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+/// A fresh, empty directory for one test.
+fn temp_dir(test: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("shadeline-cli-{}-{test}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+fn shadeline(args: &[&str], dir: &Path) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_shadeline"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("the binary runs")
+}
+
+fn stderr(out: &Output) -> String {
+    String::from_utf8_lossy(&out.stderr).into_owned()
+}
+
+fn exponent_series_text() -> String {
+    std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/../scenes/exponent-series.toml"
+    ))
+    .unwrap()
+}
+
+/// Decodes a PNG: (width, height, colour type, bit depth, pixel bytes).
+fn read_png(path: &Path) -> (u32, u32, png::ColorType, png::BitDepth, Vec<u8>) {
+    let file = std::io::BufReader::new(std::fs::File::open(path).unwrap());
+    let mut reader = png::Decoder::new(file).read_info().unwrap();
+    let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+    let info = reader.next_frame(&mut buf).unwrap();
+    buf.truncate(info.buffer_size());
+    (
+        info.width,
+        info.height,
+        info.color_type,
+        info.bit_depth,
+        buf,
+    )
+}
+
+/// Asserts a refusal: exit code 2, one line on stderr saying `words`, no panic.
+fn assert_refused(out: &Output, words: &[&str]) {
+    let err = stderr(out);
+    assert_eq!(out.status.code(), Some(2), "stderr: {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert_eq!(err.trim_end().lines().count(), 1, "{err}");
+    for w in words {
+        assert!(err.contains(w), "{err:?} does not contain {w:?}");
+    }
+}
+
+#[test]
+fn a_bad_scene_file_is_one_located_message_and_exit_code_2() {
+    let dir = temp_dir("bad-scene");
+    let text = exponent_series_text().replacen("radius = 0.9", "radius = 0.0", 1);
+    let line = text[..text.find("radius = 0.0").unwrap()]
+        .matches('\n')
+        .count()
+        + 1;
+    std::fs::write(dir.join("bad.toml"), text).unwrap();
+    for command in ["render", "compare"] {
+        let out = shadeline(
+            &[command, "bad.toml", "--width", "8", "--height", "6"],
+            &dir,
+        );
+        let at = format!("bad.toml:{line}:10: error:");
+        assert_refused(
+            &out,
+            &[&at, "(key `sphere[0].radius`)", "greater than zero"],
+        );
+    }
+    assert!(!dir.join("spheres.png").exists());
+    assert!(!dir.join("compare.png").exists());
+}
+
+#[test]
+fn unreadable_non_utf8_and_directory_inputs_are_refused_without_panic() {
+    let dir = temp_dir("unreadable");
+    assert_refused(
+        &shadeline(&["render", "missing.toml"], &dir),
+        &["missing.toml: error: cannot read"],
+    );
+    std::fs::create_dir(dir.join("scene.toml")).unwrap();
+    assert_refused(
+        &shadeline(&["render", "scene.toml"], &dir),
+        &["scene.toml: error: cannot read"],
+    );
+    std::fs::write(dir.join("latin1.toml"), b"[image]\nwidth = 4 # caf\xe9\n").unwrap();
+    assert_refused(
+        &shadeline(&["render", "latin1.toml"], &dir),
+        &["latin1.toml:2:", "not UTF-8", "0xe9"],
+    );
+}
+
+#[test]
+fn a_bad_size_on_the_command_line_is_refused() {
+    let dir = temp_dir("bad-size");
+    assert_refused(
+        &shadeline(&["render", "--width", "0"], &dir),
+        &["error:", "not supported"],
+    );
+    assert_refused(
+        &shadeline(&["compare", "--height", "70000"], &dir),
+        &["error:", "not supported"],
+    );
+}
+
+#[test]
+fn render_writes_an_rgb_png_of_the_asked_size() {
+    let dir = temp_dir("render-size");
+    let out = shadeline(
+        &[
+            "render", "--width", "64", "--height", "48", "--path", "simd",
+        ],
+        &dir,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(stdout.contains("64x48 simd8"), "{stdout}");
+    assert!(stdout.contains("Mpix/s"), "{stdout}");
+    let (w, h, color, depth, pixels) = read_png(&dir.join("spheres.png"));
+    assert_eq!(
+        (w, h, color, depth),
+        (64, 48, png::ColorType::Rgb, png::BitDepth::Eight)
+    );
+    // The background (top-left) and the middle sphere row differ.
+    let at = |x: usize, y: usize| &pixels[(y * 64 + x) * 3..][..3];
+    assert_ne!(at(0, 0), at(32, 24));
+}
+
+#[test]
+fn the_thread_count_does_not_change_a_byte() {
+    let dir = temp_dir("threads");
+    std::fs::write(dir.join("scene.toml"), exponent_series_text()).unwrap();
+    for path in ["scalar", "simd4", "simd8"] {
+        let mut files = Vec::new();
+        for threads in ["1", "3"] {
+            let name = format!("{path}-{threads}.png");
+            let out = shadeline(
+                &[
+                    "render",
+                    "scene.toml",
+                    "--width",
+                    "96",
+                    "--height",
+                    "70",
+                    "--path",
+                    path,
+                    "--threads",
+                    threads,
+                    "-o",
+                    &name,
+                ],
+                &dir,
+            );
+            assert!(out.status.success(), "{}", stderr(&out));
+            files.push(std::fs::read(dir.join(&name)).unwrap());
+        }
+        assert!(files[0].len() > 100);
+        assert_eq!(
+            files[0], files[1],
+            "{path}: --threads 3 differs from --threads 1"
+        );
+    }
+}
+
+#[test]
+fn compare_prints_one_row_per_path_and_writes_the_picture() {
+    let dir = temp_dir("compare");
+    let out = shadeline(
+        &[
+            "compare",
+            "--width",
+            "40",
+            "--height",
+            "30",
+            "--threads",
+            "2",
+        ],
+        &dir,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    for path in ["scalar", "simd4", "simd8"] {
+        assert!(
+            stdout
+                .lines()
+                .any(|l| l.starts_with(path) && l.contains("dB")),
+            "{stdout}"
+        );
+    }
+    let (w, h, ..) = read_png(&dir.join("compare.png"));
+    assert_eq!((w, h), (40 * 4, 30 * 2));
+}
