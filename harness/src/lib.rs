@@ -6,6 +6,8 @@
 //! - [`paths`]: the list of rendering paths; [`rows`]: rendering rows on threads;
 //! - [`compare`]: measuring the paths against the `f64` reference; [`image`]: PNG output.
 
+#![warn(missing_docs)]
+
 pub mod compare;
 pub mod image;
 pub mod paths;
