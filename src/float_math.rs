@@ -29,12 +29,12 @@ use crate::lane::Lane;
 
 const SQRT_2: f32 = core::f32::consts::SQRT_2;
 /// `2 / ln 2`: turns `atanh` into `log2`.
-const TWO_OVER_LN2: f32 = 2.885_390_08;
+const TWO_OVER_LN2: f32 = 2.0 * core::f32::consts::LOG2_E;
 /// `1.5 · 2^23`: adding and subtracting it rounds to the nearest integer for `|y| < 2^22`.
 const ROUND_MAGIC: f32 = 12_582_912.0;
 /// `ln(2)^k / k!` for `k = 1..=7`: Taylor coefficients of `2^f`.
 const EXP2_C: [f32; 7] = [
-    0.693_147_18,
+    core::f32::consts::LN_2,
     0.240_226_5,
     0.055_504_11,
     0.009_618_129,

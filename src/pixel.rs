@@ -223,7 +223,7 @@ mod tests {
             color: LinearRgb::new(1.0, 0.0, 1.0),
             hit: HitRecord::default(),
         });
-        assert_eq!(px.0, 0b11111_000000_11111);
+        assert_eq!(px.0, 0xf81f); // red 11111, green 000000, blue 11111
         assert_eq!(px.levels(), (31, 0, 31));
     }
 }

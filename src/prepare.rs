@@ -87,15 +87,15 @@ pub(crate) enum PreparedLight {
 /// A scene prepared for rendering at one size on one float path (`W`).
 ///
 /// ```
-/// use shadeline::{Prepared, Scalar, Simd8, Rgb888, exponent_series};
-/// let scene = exponent_series();
+/// use shadeline::{Prepared, Render, Scalar, Simd8, Rgb888, exponent_series};
+/// let scene = exponent_series()?;
 /// let scalar = Prepared::<Scalar>::new(&scene, 64, 48)?;
 /// let simd = Prepared::<Simd8>::new(&scene, 64, 48)?;
 /// let (mut a, mut b) = ([Rgb888::default(); 64], [Rgb888::default(); 64]);
 /// scalar.render_line(24, &mut a)?;
 /// simd.render_line(24, &mut b)?;
 /// assert_eq!(a, b);
-/// # Ok::<(), shadeline::RenderError>(())
+/// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 #[derive(Clone, Debug)]
 pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize = 8> {

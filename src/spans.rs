@@ -46,6 +46,8 @@ const DISC_SLACK: f32 = 1.0e-4;
 ///
 /// `eye_offset` is `eye − centre`, `base` the row base `y·up + forward`; `x_scale` and `width`
 /// map camera-plane `x` to pixel indices as the primary rays do.
+// `!(a > b)` on purpose below: a NaN must take the conservative branch (the whole row).
+#[allow(clippy::neg_cmp_op_on_partial_ord)]
 pub(crate) fn sphere_span(
     eye_offset: Vec3,
     radius_sq: f32,

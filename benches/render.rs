@@ -1,0 +1,164 @@
+//! Criterion benchmarks of the float paths, single thread, reported as Mpix/s.
+//!
+//! - `frame/*`: the exponent series at 320×240 and 1024×747, every width, with and without
+//!   scanline spans (without spans is the naive renderer: every sphere at every pixel).
+//! - `kernel/*`: the shading kernel on fully covered packets: one sphere fills the view, so
+//!   every packet is shaded and the row driver's share is negligible.
+//! - `lights/*`, `spheres/*`, `size/*`: how cost scales with lights, spheres and pixels.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use shadeline::*;
+use std::hint::black_box;
+use std::time::Duration;
+
+fn render<R: Render>(r: &R, buf: &mut [Rgb888]) {
+    r.render_frame(buf).unwrap();
+    black_box(&buf[0]);
+}
+
+fn bench_paths<const S: usize, const L: usize>(
+    c: &mut Criterion,
+    group: &str,
+    scene: &Scene<S, L>,
+    (w, h): (u32, u32),
+    id: &str,
+    spans: bool,
+) {
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(w as u64 * h as u64));
+    let mut buf = vec![Rgb888::default(); w as usize * h as usize];
+    let scalar = Prepared::<Scalar, S, L>::new(scene, w, h)
+        .unwrap()
+        .with_spans(spans);
+    g.bench_function(BenchmarkId::new("scalar", id), |b| {
+        b.iter(|| render(&scalar, &mut buf))
+    });
+    let simd4 = Prepared::<Simd4, S, L>::new(scene, w, h)
+        .unwrap()
+        .with_spans(spans);
+    g.bench_function(BenchmarkId::new("simd4", id), |b| {
+        b.iter(|| render(&simd4, &mut buf))
+    });
+    let simd8 = Prepared::<Simd8, S, L>::new(scene, w, h)
+        .unwrap()
+        .with_spans(spans);
+    g.bench_function(BenchmarkId::new("simd8", id), |b| {
+        b.iter(|| render(&simd8, &mut buf))
+    });
+    g.finish();
+}
+
+fn camera(distance: f32) -> Camera {
+    Camera {
+        position: Vec3::new(0.0, 0.0, distance),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 40.0,
+    }
+}
+
+fn plastic(n: f32) -> Material {
+    Material {
+        shininess: n,
+        ..Material::default()
+    }
+}
+
+/// One sphere that covers every pixel, lit by `lights` distant lights.
+fn covered(lights: usize) -> Scene<32, 8> {
+    let mut scene = Scene::new(camera(2.2), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+    scene
+        .add_sphere(Sphere {
+            center: Vec3::new(0.0, 0.0, 0.0),
+            radius: 1.5,
+            material: plastic(60.0),
+        })
+        .unwrap();
+    for k in 0..lights {
+        let a = k as f32 * 0.7;
+        scene
+            .add_light(Light::Distant {
+                direction: Vec3::new(a.cos(), -1.0, a.sin() - 1.0),
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: 1.0,
+            })
+            .unwrap();
+    }
+    scene
+}
+
+/// `n` spheres on a grid filling the view, one light.
+fn grid(n: usize) -> Scene<32, 8> {
+    let mut scene = Scene::new(camera(14.0), LinearRgb::new(0.1, 0.1, 0.2)).unwrap();
+    let side = (n as f32).sqrt().ceil() as usize;
+    let step = 9.0 / side as f32;
+    for k in 0..n {
+        let (i, j) = ((k % side) as f32, (k / side) as f32);
+        scene
+            .add_sphere(Sphere {
+                center: Vec3::new((i + 0.5) * step - 4.5, (j + 0.5) * step - 4.5, 0.0),
+                radius: 0.45 * step,
+                material: plastic(40.0),
+            })
+            .unwrap();
+    }
+    scene
+        .add_light(Light::Distant {
+            direction: Vec3::new(-0.4, -0.8, -0.4),
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 3.0,
+        })
+        .unwrap();
+    scene
+}
+
+fn benches(c: &mut Criterion) {
+    let series = exponent_series().unwrap();
+    for size in [(320, 240), (1024, 747)] {
+        let id = format!("{}x{}", size.0, size.1);
+        bench_paths(c, "frame/exponent-series/spans", &series, size, &id, true);
+        bench_paths(c, "frame/exponent-series/naive", &series, size, &id, false);
+    }
+    bench_paths(
+        c,
+        "kernel/covered",
+        &covered(1),
+        (320, 240),
+        "1-light",
+        true,
+    );
+    for lights in [1, 2, 4, 8] {
+        bench_paths(
+            c,
+            "lights",
+            &covered(lights),
+            (320, 240),
+            &lights.to_string(),
+            true,
+        );
+    }
+    for spheres in [1, 5, 16, 32] {
+        bench_paths(
+            c,
+            "spheres",
+            &grid(spheres),
+            (320, 240),
+            &spheres.to_string(),
+            true,
+        );
+    }
+    for size in [(160, 120), (320, 240), (640, 480), (1280, 960)] {
+        let id = format!("{}x{}", size.0, size.1);
+        bench_paths(c, "size/exponent-series", &series, size, &id, true);
+    }
+}
+
+criterion_group! {
+    name = render_benches;
+    config = Criterion::default()
+        .sample_size(20)
+        .warm_up_time(Duration::from_millis(300))
+        .measurement_time(Duration::from_secs(1));
+    targets = benches
+}
+criterion_main!(render_benches);
