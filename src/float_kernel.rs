@@ -173,7 +173,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             // diffuse and specular, from the brdf module's definitions.
             let n_dot_l = n.dot(to_light).max(zero);
             let cosine = brdf::specular_cosine(n, to_light, view, is_blinn);
-            let lobe = pow_clamped(cosine, shininess);
+            // pow_clamped is exactly 0 where the cosine is not positive, so a packet with no
+            // positive lane can skip it without changing a bit.
+            let lobe = if W::Lane::any(zero.lt(cosine)) {
+                pow_clamped(cosine, shininess)
+            } else {
+                zero
+            };
             let lit = W::Lane::select(visible, one, zero);
             diffuse = diffuse + arriving * (n_dot_l * lit);
             specular = specular + arriving * (lobe * lit);

@@ -48,8 +48,16 @@ pub trait Lane:
     fn splat(v: f32) -> Self;
     /// Lane `i` holds `start + i` (exact for the pixel indices a frame can have).
     fn ramp(start: f32) -> Self;
-    /// Lane `i`'s value.
-    fn lane(self, i: usize) -> f32;
+    /// The lanes in order, padded with zeros to 8 (the widest lane type).
+    fn to_lanes(self) -> [f32; 8];
+    /// Each lane truncated toward zero to an integer, padded with zeros to 8. Lanes must hold
+    /// values in `i32` range (the encode stage passes `[0.5, 65535.5]`).
+    fn trunc_lanes(self) -> [i32; 8];
+    /// Lane `i`'s value (`i` taken modulo the lane count).
+    #[inline(always)]
+    fn lane(self, i: usize) -> f32 {
+        self.to_lanes()[i % Self::LANES]
+    }
     /// Correctly rounded square root.
     fn sqrt(self) -> Self;
     /// Per-lane `self < rhs` (false if either is NaN).
@@ -105,8 +113,12 @@ impl Lane for f32 {
         start
     }
     #[inline(always)]
-    fn lane(self, _i: usize) -> f32 {
-        self
+    fn to_lanes(self) -> [f32; 8] {
+        [self, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0]
+    }
+    #[inline(always)]
+    fn trunc_lanes(self) -> [i32; 8] {
+        [self as i32, 0, 0, 0, 0, 0, 0, 0]
     }
     #[inline(always)]
     fn sqrt(self) -> Self {
@@ -175,17 +187,29 @@ macro_rules! wide_lane {
             }
             #[inline(always)]
             fn ramp(start: f32) -> Self {
-                let mut a = [0.0f32; $n];
-                let mut i = 0;
-                while i < $n {
-                    a[i] = start + i as f32;
-                    i += 1;
+                // `start + i` is exact for pixel indices (integers + ½ far below 2^23), so
+                // one lane-wise add gives the scalar path's values.
+                let mut offsets = [0.0f32; $n];
+                for (i, o) in offsets.iter_mut().enumerate() {
+                    *o = i as f32;
                 }
-                <$t>::new(a)
+                <$t>::splat(start) + <$t>::new(offsets)
             }
             #[inline(always)]
-            fn lane(self, i: usize) -> f32 {
-                self.as_array()[i % $n]
+            fn to_lanes(self) -> [f32; 8] {
+                let mut out = [0.0f32; 8];
+                for (o, v) in out.iter_mut().zip(self.to_array()) {
+                    *o = v;
+                }
+                out
+            }
+            #[inline(always)]
+            fn trunc_lanes(self) -> [i32; 8] {
+                let mut out = [0i32; 8];
+                for (o, v) in out.iter_mut().zip(self.trunc_int().to_array()) {
+                    *o = v;
+                }
+                out
             }
             #[inline(always)]
             fn sqrt(self) -> Self {

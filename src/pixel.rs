@@ -92,6 +92,18 @@ pub trait Pixel: Copy {
     /// Whether [`Shade::hit`] must be filled in; formats that only store colour leave it
     /// `false` so the kernel skips the bookkeeping.
     const NEEDS_HITS: bool = false;
+    /// For formats that store rounded levels: the largest level of each channel (255 for
+    /// 8 bits). The float paths then quantize a whole packet at once with exactly the rule
+    /// of [`quantize`] and build pixels with [`Pixel::from_levels`]. `None` for formats that
+    /// store something else; they get [`Pixel::encode`] per pixel.
+    const LEVELS: Option<[u16; 3]> = None;
+    /// Builds a pixel from channel levels in `0..=LEVELS[c]`; only called when
+    /// [`Pixel::LEVELS`] is `Some`. The default ignores the levels (for formats without them).
+    #[inline(always)]
+    fn from_levels(levels: [u16; 3]) -> Self {
+        let _ = levels;
+        Self::encode(&Shade::default())
+    }
     /// Encodes one sample shaded in `f32`.
     fn encode(shade: &Shade) -> Self;
     /// Encodes one sample shaded in fixed point, with integer arithmetic only (except for
@@ -116,13 +128,22 @@ pub fn quantize(c: f32, max: f32) -> u16 {
 }
 
 impl Pixel for Rgb888 {
+    const LEVELS: Option<[u16; 3]> = Some([255, 255, 255]);
+    #[inline(always)]
+    fn from_levels([r, g, b]: [u16; 3]) -> Self {
+        Rgb888 {
+            r: r as u8,
+            g: g as u8,
+            b: b as u8,
+        }
+    }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Rgb888 {
-            r: quantize(s.color.r, 255.0) as u8,
-            g: quantize(s.color.g, 255.0) as u8,
-            b: quantize(s.color.b, 255.0) as u8,
-        }
+        Self::from_levels([
+            quantize(s.color.r, 255.0),
+            quantize(s.color.g, 255.0),
+            quantize(s.color.b, 255.0),
+        ])
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
@@ -138,15 +159,20 @@ impl Pixel for Rgb888 {
 impl Rgb565 {
     /// Packs 5-bit red, 6-bit green and 5-bit blue levels.
     #[inline(always)]
-    pub fn from_levels(r: u16, g: u16, b: u16) -> Self {
+    pub fn pack(r: u16, g: u16, b: u16) -> Self {
         Rgb565(((r & 0x1f) << 11) | ((g & 0x3f) << 5) | (b & 0x1f))
     }
 }
 
 impl Pixel for Rgb565 {
+    const LEVELS: Option<[u16; 3]> = Some([31, 63, 31]);
+    #[inline(always)]
+    fn from_levels([r, g, b]: [u16; 3]) -> Self {
+        Rgb565::pack(r, g, b)
+    }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Rgb565::from_levels(
+        Rgb565::pack(
             quantize(s.color.r, 31.0),
             quantize(s.color.g, 63.0),
             quantize(s.color.b, 31.0),
@@ -155,7 +181,7 @@ impl Pixel for Rgb565 {
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
         let [r, g, b] = s.color;
-        Rgb565::from_levels(
+        Rgb565::pack(
             quantize_fixed(r, 31),
             quantize_fixed(g, 63),
             quantize_fixed(b, 31),

@@ -10,6 +10,7 @@
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
 
+use crate::float_kernel::Packet;
 use crate::lane::Lane;
 use crate::pixel::{HitRecord, LinearRgb, Pixel, Shade};
 use crate::prepare::{FloatPath, Prepared};
@@ -208,26 +209,55 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
                     continue;
                 }
                 let packet = self.shade_packet(&row, x0, &candidates, P::NEEDS_HITS);
-                for (i, (px, shadowed)) in chunk.iter_mut().zip(packet.shadowed).enumerate() {
-                    let sphere = packet.sphere.lane(i);
-                    let shade = Shade {
-                        color: LinearRgb::new(
-                            packet.color.x.lane(i),
-                            packet.color.y.lane(i),
-                            packet.color.z.lane(i),
-                        ),
-                        hit: HitRecord {
-                            sphere: (sphere >= 0.0).then_some(sphere as u16),
-                            shadowed: if sphere >= 0.0 { shadowed } else { 0 },
-                        },
-                    };
-                    *px = P::encode(&shade);
-                }
+                store_packet(chunk, &packet);
             }
         }
         if let Some(tail) = out.get_mut(x..) {
             tail.fill(background);
         }
         Ok(())
+    }
+}
+
+/// The encode stage of the float paths: writes the first `chunk.len()` lanes of a packet.
+///
+/// Formats with levels are quantized a packet at a time, with the rule of
+/// [`quantize`](crate::pixel::quantize) (clamp with NaN to 0, `c·max + ½`, truncate), so every
+/// width stores the bits the scalar path stores.
+#[inline(always)]
+fn store_packet<P: Pixel, T: Lane>(chunk: &mut [P], packet: &Packet<T>) {
+    if let Some(max) = P::LEVELS {
+        let zero = T::splat(0.0);
+        let one = T::splat(1.0);
+        let half = T::splat(0.5);
+        let quantize = |c: T, max: u16| {
+            let c = T::select(zero.lt(c), c, zero);
+            let c = T::select(c.lt(one), c, one);
+            (c * T::splat(max as f32) + half).trunc_lanes()
+        };
+        let r = quantize(packet.color.x, max[0]);
+        let g = quantize(packet.color.y, max[1]);
+        let b = quantize(packet.color.z, max[2]);
+        for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
+            *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
+        }
+        return;
+    }
+    let (r, g, b) = (
+        packet.color.x.to_lanes(),
+        packet.color.y.to_lanes(),
+        packet.color.z.to_lanes(),
+    );
+    let spheres = packet.sphere.to_lanes();
+    let lanes = r.iter().zip(&g).zip(&b).zip(&spheres).zip(&packet.shadowed);
+    for (px, ((((r, g), b), sphere), shadowed)) in chunk.iter_mut().zip(lanes) {
+        let hit = *sphere >= 0.0;
+        *px = P::encode(&Shade {
+            color: LinearRgb::new(*r, *g, *b),
+            hit: HitRecord {
+                sphere: hit.then_some(*sphere as u16),
+                shadowed: if hit { *shadowed } else { 0 },
+            },
+        });
     }
 }

@@ -37,6 +37,22 @@ fn assert_all_paths_identical<const S: usize, const L: usize>(
         }
         let hits: Vec<HitRecord> = frame(r);
         assert!(hits == want_hits, "{label}: hit records differ");
+        // The packet-wide encode stage stores what the per-pixel definition gives.
+        let linear: Vec<LinearRgb> = frame(r);
+        let shade = |c: &LinearRgb| Shade {
+            color: *c,
+            hit: HitRecord::default(),
+        };
+        let want_888: Vec<Rgb888> = linear.iter().map(|c| Rgb888::encode(&shade(c))).collect();
+        assert!(
+            frame::<Rgb888, _>(r) == want_888,
+            "{label}: Rgb888 encode differs"
+        );
+        let want_565: Vec<Rgb565> = linear.iter().map(|c| Rgb565::encode(&shade(c))).collect();
+        assert!(
+            frame::<Rgb565, _>(r) == want_565,
+            "{label}: Rgb565 encode differs"
+        );
     }
     for spans in [false, true] {
         let label = |p: &str| format!("{what}: {p}, spans {spans}");
