@@ -3,7 +3,7 @@
 //!
 //! ```text
 //! shadeline render  [SCENE.toml] [--path scalar|simd4|simd8|simd] [-o spheres.png]
-//!                   [--threads N] [--width W] [--height H]
+//!                   [--threads N] [--width W] [--height H] [--repeat N]
 //! shadeline compare [SCENE.toml] [-o compare.png] [--threads N] [--width W] [--height H]
 //! ```
 //!
@@ -44,6 +44,9 @@ enum Command {
         /// Where to write the PNG.
         #[arg(short, long, default_value = "spheres.png")]
         output: PathBuf,
+        /// Timed frames after one untimed warm-up frame; the median and best are reported.
+        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..))]
+        repeat: u16,
     },
     /// Compare every path with the f64 reference: a table, and a picture of the differences.
     Compare {
@@ -95,7 +98,8 @@ fn main() -> ExitCode {
             input,
             path,
             output,
-        } => render(&input, &path, &output),
+            repeat,
+        } => render(&input, &path, &output, usize::from(repeat)),
         Command::Compare { input, output } => run_compare(&input, &output),
     };
     match result {
@@ -143,29 +147,45 @@ fn read_scene(path: &std::path::Path) -> Result<SceneFile, Failure> {
     parse_scene(&text).map_err(|e| Failure::input(format!("{name}:{e}")))
 }
 
-fn render(input: &Input, path_name: &str, output: &std::path::Path) -> Result<(), Failure> {
+fn render(
+    input: &Input,
+    path_name: &str,
+    output: &std::path::Path,
+    repeat: usize,
+) -> Result<(), Failure> {
     let file = input.load()?;
     let threads = input.threads();
     let path: Path = paths::find(path_name)
         .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
-    let start = Instant::now();
-    let rgb = (path.prepare)(&file.scene, file.width, file.height)
-        .and_then(|frame| frame.render_rgb(threads))
-        .map_err(|e| Failure::input(format!("error: {e}")))?;
-    let seconds = start.elapsed().as_secs_f64();
+    let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
+    let frame = (path.prepare)(&file.scene, file.width, file.height).map_err(failed)?;
+    // One untimed frame first: it faults the buffer's pages in and warms the caches, so the
+    // timed frames measure shading, not the operating system.
+    let mut rgb = frame.render_rgb(threads).map_err(failed)?;
+    let mut times = Vec::with_capacity(repeat);
+    for _ in 0..repeat {
+        let start = Instant::now();
+        frame.render_rgb_into(&mut rgb, threads).map_err(failed)?;
+        times.push(start.elapsed().as_secs_f64());
+    }
+    times.sort_by(f64::total_cmp);
+    let median = times[times.len() / 2];
+    let best = times[0];
     RgbImage::from_pixels(file.width, file.height, &rgb)
         .write_png(output)
         .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
     let megapixels = f64::from(file.width) * f64::from(file.height) / 1e6;
     println!(
-        "{}x{} {} on {} thread{}: {:.2} ms, {:.1} Mpix/s -> {}",
+        "{}x{} {} on {} thread{}: {:.2} ms per frame (median of {}, best {:.2} ms), {:.1} Mpix/s -> {}",
         file.width,
         file.height,
         path.name,
         threads,
         if threads == 1 { "" } else { "s" },
-        seconds * 1e3,
-        megapixels / seconds,
+        median * 1e3,
+        repeat,
+        best * 1e3,
+        megapixels / median,
         output.display()
     );
     Ok(())

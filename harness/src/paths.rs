@@ -4,7 +4,7 @@
 //! `new(&scene, width, height) -> Result<Self, RenderError>` that implements
 //! [`shadeline::Render`]; adding one (the fixed-point path, say) is one line in [`PATHS`].
 
-use crate::rows::render_rows;
+use crate::rows::{render_rows, render_rows_into};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
 use shadeline::{HitRecord, Prepared, Render, RenderError, Rgb888, Scalar, Simd4, Simd8};
 
@@ -15,6 +15,8 @@ use shadeline::{HitRecord, Prepared, Render, RenderError, Rgb888, Scalar, Simd4,
 pub trait Frame: Sync {
     /// The frame as 8-bit RGB.
     fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, RenderError>;
+    /// The frame as 8-bit RGB into an existing buffer of width × height pixels.
+    fn render_rgb_into(&self, frame: &mut [Rgb888], threads: usize) -> Result<(), RenderError>;
     /// The frame's hit records: which sphere each pixel shows and which lights are blocked.
     fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, RenderError>;
 }
@@ -22,6 +24,18 @@ pub trait Frame: Sync {
 impl<R: Render + Sync> Frame for R {
     fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, RenderError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
+            self.render_line(y, row)
+        })
+    }
+    fn render_rgb_into(&self, frame: &mut [Rgb888], threads: usize) -> Result<(), RenderError> {
+        let expected = self.width() as usize * self.height() as usize;
+        if frame.len() != expected {
+            return Err(RenderError::FrameLength {
+                expected,
+                got: frame.len(),
+            });
+        }
+        render_rows_into(frame, self.width(), threads, |y, row| {
             self.render_line(y, row)
         })
     }

@@ -19,7 +19,8 @@ pub fn default_threads() -> usize {
     thread::available_parallelism().map_or(1, |n| n.get())
 }
 
-/// Renders a `width × height` frame, row-major, on `threads` scoped threads (at least one).
+/// Renders a `width × height` frame, row-major, on `threads` scoped threads (at least one),
+/// into a new buffer.
 ///
 /// `shade_row(y, row)` fills row `y`; its first error, if any, is returned.
 pub fn render_rows<T, F>(
@@ -37,8 +38,33 @@ where
     if w == 0 || h == 0 {
         return Err(RenderError::BadSize { width, height });
     }
-    let threads = threads.max(1);
     let mut frame = vec![T::default(); w * h];
+    render_rows_into(&mut frame, width, threads, shade_row)?;
+    Ok(frame)
+}
+
+/// Renders every row of `frame` (row-major, `width` pixels per row) on `threads` scoped
+/// threads (at least one), into the caller's buffer.
+///
+/// `shade_row(y, row)` fills row `y`; its first error, if any, is returned.
+pub fn render_rows_into<T, F>(
+    frame: &mut [T],
+    width: u32,
+    threads: usize,
+    shade_row: F,
+) -> Result<(), RenderError>
+where
+    T: Send,
+    F: Fn(u32, &mut [T]) -> Result<(), RenderError> + Sync,
+{
+    let w = width as usize;
+    if w == 0 || frame.len() % w != 0 {
+        return Err(RenderError::FrameLength {
+            expected: frame.len().div_ceil(w.max(1)) * w,
+            got: frame.len(),
+        });
+    }
+    let threads = threads.max(1);
     let mut dealt: Vec<Vec<(usize, &mut [T])>> = (0..threads).map(|_| Vec::new()).collect();
     for (block, rows) in frame.chunks_mut(w * BLOCK_ROWS).enumerate() {
         dealt[block % threads].push((block * BLOCK_ROWS, rows));
@@ -64,8 +90,7 @@ where
                 .join()
                 .unwrap_or_else(|panic| std::panic::resume_unwind(panic))
         })
-    })?;
-    Ok(frame)
+    })
 }
 
 #[cfg(test)]
