@@ -58,7 +58,7 @@ where
     F: Fn(u32, &mut [T]) -> Result<(), RenderError> + Sync,
 {
     let w = width as usize;
-    if w == 0 || frame.len() % w != 0 {
+    if w == 0 || !frame.len().is_multiple_of(w) {
         return Err(RenderError::FrameLength {
             expected: frame.len().div_ceil(w.max(1)) * w,
             got: frame.len(),
