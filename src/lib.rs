@@ -36,6 +36,7 @@
 //! |---|---|---|---|
 //! | scalar | [`Prepared<Scalar>`] | `f32`, one pixel per kernel call | the float reference of the crate |
 //! | SIMD | [`Prepared<Simd4>`], [`Prepared<Simd8>`] | `wide::f32x4` / `f32x8` lanes | bit-identical to scalar |
+//! | fixed | [`PreparedFixed`] | integers only per pixel ([`fixed`] formats) | within 2 levels of the reference, the same bits on every target |
 //!
 //! An independent `f64` renderer, [`reference`], written straight from the formulas and
 //! sharing no code with the kernels, is what the paths are measured against.
@@ -51,6 +52,7 @@
 #![deny(missing_docs)]
 
 pub mod brdf;
+pub mod fixed;
 mod float_kernel;
 pub mod float_math;
 pub mod lane;
@@ -63,6 +65,7 @@ pub mod scene;
 pub mod spans;
 pub mod vec3;
 
+pub use fixed::PreparedFixed;
 pub use pixel::{FixedShade, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
 pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
 pub use presets::{exponent_series, EXPONENT_SERIES_SIZE};

@@ -14,6 +14,7 @@ use crate::float_kernel::Packet;
 use crate::lane::Lane;
 use crate::pixel::{HitRecord, LinearRgb, Pixel, Shade};
 use crate::prepare::{FloatPath, Prepared};
+use crate::scene::Item;
 use crate::spans::Span;
 use core::fmt;
 
@@ -49,6 +50,14 @@ pub enum RenderError {
         /// The image height.
         height: u32,
     },
+    /// A number of the scene does not fit the fixed-point path's formats (see
+    /// [`crate::fixed`]); only [`PreparedFixed::new`](crate::PreparedFixed::new) returns it.
+    OutOfFixedRange {
+        /// The item holding the number.
+        item: Item,
+        /// The field's name, as spelled in the scene file.
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for RenderError {
@@ -70,6 +79,10 @@ impl fmt::Display for RenderError {
             RenderError::RowOutOfRange { y, height } => {
                 write!(f, "row {y} is outside an image {height} rows high")
             }
+            RenderError::OutOfFixedRange { item, field } => write!(
+                f,
+                "{item}: `{field}` does not fit the fixed-point path's number formats"
+            ),
         }
     }
 }

@@ -1,0 +1,260 @@
+//! The per-pixel stages of the fixed path, in the float kernel's order and under its names:
+//!
+//! | stage | what it computes | formats |
+//! |---|---|---|
+//! | `ray` | the primary ray through the pixel centre, normalized | I16F48 → I2F30 |
+//! | `hit` | the nearest sphere hit with `t > ε` among the pixel's candidate spheres | I16F16, I32F32 |
+//! | `normal` | `N = (P − C)·(1/r)`: no square root, `1/r` prepared | I16F16 → I2F30 |
+//! | `light` | per light: direction `L` toward it, arriving colour `I`, shadow-ray length | I2F30, U16F16 |
+//! | `shadow` | a ray from `P + ε·N` toward the light, tested against every sphere | as `hit` |
+//! | `diffuse` | `Σ vis·I·max(0, N·L)` | U16F16 |
+//! | `specular` | `Σ vis·I·lobe`, lobe `= (1 − h)^n`, `h = ½|R − V|²` or `½|N − H|²` | U3F61 → U1F31 → U16F16 |
+//! | `encode` | `kd·albedo·diffuse + ks·specular`, saturating | U16F16 |
+//!
+//! (The spans stage is the row driver's, in [`super::spans`] and [`super::row`].)
+//!
+//! Every product of two 32-bit quantities is widened (`wide_mul`, or `i64`/`u64`), every sum
+//! that could leave its format saturates, and no division or square root can see a zero or
+//! negative input: `1/√x` and `√x` come from [`super::roots`], which return `None` or 0 for
+//! zero and take unsigned input. Nothing here can panic, in release or debug.
+
+use super::exact::shift_saturating;
+use super::pow::lobe;
+use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
+use super::roots::{inv_sqrt, sqrt};
+use super::vector::{
+    dot_len_unit, dot_unit, len_times_unit, length_sq, normalize, to_len, Len, Unit, V3,
+};
+use crate::pixel::HitRecord;
+use crate::spans::Span;
+use fixed::types::{I16F48, U16F16};
+
+/// What the kernel found for one pixel: linear colour in U16F16 (saturated) and the hit
+/// record (shadowed bits only when asked for).
+pub(crate) struct Shaded {
+    pub color: [u32; 3],
+    pub hit: HitRecord,
+}
+
+/// A light as seen from one surface point.
+struct Incoming {
+    /// Unit vector toward the light; zero if the point is at the light.
+    to_light: V3<Unit>,
+    /// Arriving light per channel.
+    arriving: [u32; 3],
+    /// Distance to a point light (raw I16F16); `None` for a distant light.
+    reach: Option<i64>,
+}
+
+/// The unit direction of the unnormalized camera-plane direction `dir` (I16F48).
+#[inline(always)]
+pub(crate) fn ray(dir: V3<I16F48>) -> Option<V3<Unit>> {
+    normalize(dir.map(|c| c.to_bits()))
+}
+
+/// Nearest `t > eps` (raw I16F16) where `origin + t·dir` meets the sphere, `oc` being
+/// `origin − centre`. Closest-approach form: `f = oc − (oc·d)d`, `disc = r² − |f|²`, which
+/// keeps precision for small spheres far away.
+#[inline(always)]
+fn nearest_hit(oc: V3<Len>, dir: V3<Unit>, radius_sq: i64, eps: i64) -> Option<i64> {
+    let b = dot_len_unit(oc, dir);
+    let f = [0, 1, 2].map(|i| (oc[i].to_bits() as i64).saturating_sub(len_times_unit(b, dir[i])));
+    let disc = radius_sq.saturating_sub(length_sq(f));
+    if disc < 0 {
+        return None;
+    }
+    let root = sqrt(disc as u64) as i64;
+    let t_near = -b - root;
+    let t_far = root - b;
+    let t = if t_near > eps { t_near } else { t_far };
+    (t > eps).then_some(t)
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Shades pixel `x` of a row whose spans are `spans`, along the unit ray `d`.
+    #[inline(always)]
+    pub(crate) fn shade(
+        &self,
+        d: V3<Unit>,
+        x: u32,
+        spans: &[Option<Span>],
+        record_hits: bool,
+    ) -> Option<Shaded> {
+        let (index, sphere, t) = self.hit(d, x, spans)?;
+        let (p, n) = self.normal(sphere, d, t);
+        let eps = self.epsilon.to_bits() as i64;
+        let shadow_origin: V3<Len> =
+            [0, 1, 2].map(|i| to_len(p[i].to_bits() as i64 + len_times_unit(eps, n[i])));
+
+        let mut diffuse = [0u32; 3];
+        let mut specular = [0u32; 3];
+        let mut shadowed = 0u32;
+        for (light_index, light) in self.lights.iter().enumerate() {
+            let incoming = self.light(light, p);
+            if self.shadow(shadow_origin, &incoming) {
+                if record_hits && light_index < 32 {
+                    shadowed |= 1 << light_index;
+                }
+                continue;
+            }
+            add(&mut diffuse, self.diffuse(n, &incoming));
+            add(&mut specular, self.specular(sphere, n, d, &incoming));
+        }
+        Some(Shaded {
+            color: self.encode(sphere, diffuse, specular),
+            hit: HitRecord {
+                sphere: Some(index as u16),
+                shadowed,
+            },
+        })
+    }
+
+    /// The nearest sphere with `t > ε` among those whose span on this row covers `x`.
+    #[inline(always)]
+    fn hit(
+        &self,
+        d: V3<Unit>,
+        x: u32,
+        spans: &[Option<Span>],
+    ) -> Option<(usize, &FixedSphere, i64)> {
+        let eps = self.epsilon.to_bits() as i64;
+        let mut best: Option<(usize, &FixedSphere, i64)> = None;
+        for (k, (s, span)) in self.spheres.iter().zip(spans).enumerate() {
+            if !span.is_some_and(|span| span.start <= x && x < span.end) {
+                continue;
+            }
+            if let Some(t) = nearest_hit(s.eye_offset, d, s.radius_sq.to_bits(), eps) {
+                if best.is_none_or(|(_, _, t_best)| t < t_best) {
+                    best = Some((k, s, t));
+                }
+            }
+        }
+        best
+    }
+
+    /// The hit point `P = eye + t·d` and the unit normal `N = (P − C)·(1/r)`.
+    #[inline(always)]
+    fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
+        let step = d.map(|c| len_times_unit(t, c));
+        let p = [0, 1, 2].map(|i| to_len(self.eye[i].to_bits() as i64 + step[i]));
+        let (y, shift) = s.inv_radius;
+        let n = [0, 1, 2].map(|i| {
+            // (P − C) from the offset, not from the rounded P: one rounding fewer.
+            let pc = s.eye_offset[i].to_bits() as i64 + step[i];
+            let v = pc.saturating_mul(y as i64) >> (shift - 30).min(63);
+            Unit::from_bits(v.clamp(-(1 << 31), (1 << 31) - 1) as i32)
+        });
+        (p, n)
+    }
+
+    /// Direction toward the light, arriving colour and shadow-ray length at `p`.
+    #[inline(always)]
+    fn light(&self, light: &FixedLight, p: V3<Len>) -> Incoming {
+        match *light {
+            FixedLight::Distant { to_light, arriving } => Incoming {
+                to_light,
+                arriving: arriving.map(U16F16::to_bits),
+                reach: None,
+            },
+            FixedLight::Point { position, power } => {
+                let lv = [0, 1, 2].map(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
+                let d2 = length_sq(lv).max(0) as u64;
+                let Some((y, shift)) = inv_sqrt(d2) else {
+                    // At the light: arriving light is capped, the direction is undefined.
+                    return Incoming {
+                        to_light: [Unit::ZERO; 3],
+                        arriving: [u32::MAX; 3],
+                        reach: Some(0),
+                    };
+                };
+                let to_light = lv.map(|c| {
+                    let u = c.saturating_mul(y as i64) >> (shift - 30).min(63);
+                    Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
+                });
+                // 1/d² in units = y²·2^(63 − 2·shift) with y² in U1F31; arriving in U16F16.
+                let y2 = (y as u64 * y as u64) >> 31;
+                let e = 79 - 2 * shift as i32;
+                let arriving =
+                    power.map(|pw| shift_saturating(pw.mantissa as u64 * y2, pw.exponent + e));
+                Incoming {
+                    to_light,
+                    arriving,
+                    reach: Some(sqrt(d2) as i64),
+                }
+            }
+        }
+    }
+
+    /// Whether any sphere blocks the ray from `origin` toward the light before it arrives.
+    #[inline(always)]
+    fn shadow(&self, origin: V3<Len>, incoming: &Incoming) -> bool {
+        let eps = self.epsilon.to_bits() as i64;
+        self.spheres.iter().any(|s| {
+            let oc = [0, 1, 2]
+                .map(|i| to_len(origin[i].to_bits() as i64 - s.center[i].to_bits() as i64));
+            nearest_hit(oc, incoming.to_light, s.radius_sq.to_bits(), eps)
+                .is_some_and(|t| incoming.reach.is_none_or(|reach| t < reach))
+        })
+    }
+
+    /// `I·max(0, N·L)` per channel, U16F16.
+    #[inline(always)]
+    fn diffuse(&self, n: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
+        let n_dot_l = dot_unit(n, incoming.to_light).max(0) as u64; // U2F30
+        incoming
+            .arriving
+            .map(|i| u32::try_from((i as u64 * n_dot_l) >> 30).unwrap_or(u32::MAX))
+    }
+
+    /// `I·lobe` per channel, U16F16, with the lobe's `h = 1 − cos` from a sum of squares.
+    #[inline(always)]
+    fn specular(&self, s: &FixedSphere, n: V3<Unit>, d: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
+        let l = incoming.to_light;
+        // u = R − V (Phong, R = −L + 2(N·L)N, V = −d) or N − H (Blinn-Phong), raw F30 in i64.
+        let u: V3<i64> = if s.blinn {
+            let half = [0, 1, 2].map(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64);
+            let Some(h) = normalize(half) else {
+                return [0; 3];
+            };
+            [0, 1, 2].map(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64)
+        } else {
+            if l == [Unit::ZERO; 3] {
+                return [0; 3];
+            }
+            let n_dot_l = dot_unit(n, l);
+            [0, 1, 2].map(|i| {
+                let r = ((2 * n_dot_l).saturating_mul(n[i].to_bits() as i64) >> 30)
+                    - l[i].to_bits() as i64;
+                r + d[i].to_bits() as i64
+            })
+        };
+        // |u|² in F60 is ½|u|² in F61: h = 1 − cos, exact from the components.
+        let h = u.iter().fold(0u64, |acc, &c| {
+            acc.saturating_add(c.unsigned_abs().saturating_mul(c.unsigned_abs()))
+        });
+        let lobe = lobe(h, s.shininess) as u64; // U1F31
+        incoming
+            .arriving
+            .map(|i| u32::try_from((i as u64 * lobe) >> 31).unwrap_or(u32::MAX))
+    }
+
+    /// `kd·albedo·diffuse + ks·specular` per channel, U16F16, saturating.
+    #[inline(always)]
+    fn encode(&self, s: &FixedSphere, diffuse: [u32; 3], specular: [u32; 3]) -> [u32; 3] {
+        let ks = s.ks.to_bits() as u64;
+        [0, 1, 2].map(|c| {
+            let kd = s.kd_albedo[c].to_bits() as u64;
+            let a = (kd * diffuse[c] as u64) >> 16;
+            let b = (ks * specular[c] as u64) >> 16;
+            u32::try_from(a.saturating_add(b)).unwrap_or(u32::MAX)
+        })
+    }
+}
+
+/// `acc += v` per channel, saturating.
+#[inline(always)]
+fn add(acc: &mut [u32; 3], v: [u32; 3]) {
+    for (a, v) in acc.iter_mut().zip(v) {
+        *a = a.saturating_add(v);
+    }
+}

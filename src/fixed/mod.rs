@@ -1,0 +1,78 @@
+//! The fixed-point path: integers only per row and per pixel, for cores without an FPU
+//! (Cortex-M0/M0+/M3, RP2040, rv32imac), and the same bits on every target.
+//!
+//! [`PreparedFixed::new`] converts the scene once per frame (the only floating point of the
+//! path, see `prepare`); [`Render::render_line`](crate::Render::render_line) then shades rows
+//! with integer arithmetic only, through the same stages as the float kernel, under the same
+//! names, in the same order (`spans`, then the kernel's `ray`, `hit`, `normal`, `light`,
+//! `shadow`, `diffuse`, `specular`, `encode`). Its contract is agreement with the `f64`
+//! [`reference`](crate::reference) within a stated budget (`tests/fixed_agreement.rs`: at
+//! most 2 levels per 8-bit channel, ≥ 99% within 1 level, ≤ 0.1% of ray decisions differ;
+//! measured: 1 level, 100%, below 0.01%), and bit-identical frames on every target
+//! (`tests/fixed_golden.rs`; `.ci/no-float-check` proves the row function calls no
+//! soft-float routine on `thumbv6m-none-eabi`).
+//!
+//! ```
+//! use shadeline::{exponent_series, PreparedFixed, Render, Rgb565};
+//! let frame = PreparedFixed::<16, 8>::new(&exponent_series()?, 32, 24)?;
+//! let mut pixels = [Rgb565::default(); 32 * 24];
+//! frame.render_frame(&mut pixels)?;
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Scaling
+//!
+//! Prepare multiplies every coordinate by a power of two `2^k` (exact in `f32`) so that the
+//! scene's extent (camera, sphere centres plus radii, point lights, largest coordinate
+//! magnitude) lies in `[2¹², 2¹³)` units, with `k ≤ 19`. The model is scale-free apart from
+//! point-light falloff, whose power is multiplied by `2^2k`, and the ray epsilon, which is
+//! scaled with the scene. So any scene the model accepts fits, and the fixed formats get
+//! the same relative precision whatever the units; what can be refused is a *ratio* that
+//! does not fit (a sphere below `2⁻¹³` of the extent).
+//!
+//! # Formats
+//!
+//! | quantity | format | range | why |
+//! |---|---|---|---|
+//! | positions, offsets, `t`, distances, ε | I16F16 | `±2¹⁵` units; the scene is within `±2¹³`, so any difference of two points, and any distance, is below `2¹⁵` | 16 fraction bits against radii of at least `2¹⁶` raw steps: normals carry ≥ 16 bits, hit points are within `2⁻¹⁶` units |
+//! | squared lengths, `r²`, the discriminant | I32F32 (`i64`) | `< 2³⁰` units² | exact products of two I16F16 (`wide_mul`), so the hit test's only rounding is in `oc·d` |
+//! | unit vectors (ray, normal, `L`, `H`), cosines | I2F30 | `[−2, 2)` | 30 bits: a direction error of `10⁻⁹`, far below what the specular lobe can see at `n = 10⁴` |
+//! | camera-plane steps, primary direction before normalizing | I16F48 (`i64`) | `±2¹⁵`; with `tan(vfov/2)·max(1, w/h) ≤ 127`, components stay within ±255 | integer steps per pixel are exact: `(2x + 1 − w)·step` by additions |
+//! | `1 − cos` (`h`) | U3F61 (`u64`) | `[0, 4)` | `½|R − V|²` from 30-bit components is exact in 61 bits: full relative precision at the highlight |
+//! | specular lobe | U1F31 | `[0, 1]` | absolute error `≤ 1.1·10⁻⁸` (see `pow`) |
+//! | `n·(−log2 cos)` | U6F26 | `[0, 64)`; ≥ 32 is a lobe of 0 | relative lobe error `y·2⁻²⁶ ≤ 5·10⁻⁷` |
+//! | shininess `n`, point-light power | `f32` mantissa and exponent (integers) | any `f32` | both span many decades; held exactly |
+//! | `kd·albedo`, `ks`, arriving light, sums, output colour | U16F16 | `[0, 65536)`; inputs ≤ [`MAX_LEVEL`] (32767) | matches [`FixedShade`](crate::FixedShade); products of two are `u64` and saturate, so a point light very close to a surface saturates instead of wrapping (the fixed path's arriving-light cap: 65536) |
+//!
+//! # Refused scenes
+//!
+//! [`PreparedFixed::new`] returns [`RenderError::OutOfFixedRange`](crate::RenderError) naming
+//! the item and field, never a frame of wrapped values: `radius` (below `2⁻¹³` of the scene's
+//! extent, [`MIN_SCALED_RADIUS`] after scaling), `vfov` (`tan(vfov/2)·max(1, w/h)` above
+//! [`MAX_PLANE_SCALE`]), `albedo`/`kd`/`ks`/`color`/`intensity` (a channel of `albedo`,
+//! `kd·albedo`, `ks`, a distant light's colour or `colour·intensity` above [`MAX_LEVEL`]).
+//!
+//! # Costs
+//!
+//! Per tested sphere nine 32×32→64-bit multiplications and, on a hit, a square root (six
+//! more, see `roots`); per lit pixel and light, a normalization (point lights), a shadow test
+//! per sphere, and about twelve multiplications for the lobe. No division anywhere per pixel:
+//! on a Cortex-M0 a 64-bit product is a call to `__aeabi_lmul`, a division one to
+//! `__aeabi_uldivmod`, several times dearer.
+//!
+//! # Modules
+//!
+//! `prepare` (scene → formats, the refusals) · `spans` (screen rectangles) · `row` (the
+//! row driver) · `kernel` (the stages) · `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
+//! `vector` (dot products and normalization) · `exact` (`f32` as mantissa and exponent).
+
+mod exact;
+mod kernel;
+mod pow;
+mod prepare;
+mod roots;
+mod row;
+mod spans;
+mod vector;
+
+pub use prepare::{PreparedFixed, MAX_LEVEL, MAX_PLANE_SCALE, MIN_SCALED_RADIUS};

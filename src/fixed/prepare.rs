@@ -1,0 +1,285 @@
+//! The prepare step of the fixed path: the scene converted to fixed point, once per frame.
+//!
+//! This is the only place the fixed path touches floating point: `f32` arithmetic (IEEE
+//! `+ − × ÷`, exact power-of-two scaling) and `libm`'s `tanf`/`sqrtf`/`floorf`/`ceilf`, the
+//! same operations on every target, followed by the `fixed` crate's exact `from_num`
+//! conversions. So the prepared numbers, and with them every pixel, are the same bits on a
+//! host, a Cortex-M0 and a RISC-V core.
+//!
+//! What it does, in order: check the size and the camera's plane scale; pick the scene's
+//! power-of-two scale; convert and check every sphere, material and light (each refusal is
+//! [`RenderError::OutOfFixedRange`] naming the item and field); compute each sphere's screen
+//! rectangle ([`super::spans`]).
+
+use super::exact::Exact;
+use super::roots::inv_sqrt;
+use super::spans::{Bounds, View};
+use super::vector::{normalize, Len, Unit, V3};
+use crate::render::RenderError;
+use crate::scene::{Item, Light, Model, Scene};
+use crate::vec3::Vec3;
+use crate::MAX_DIMENSION;
+use fixed::types::{I16F48, I32F32, U16F16};
+
+/// The scene is scaled by a power of two so that its extent is below `2^EXTENT_LOG2` units.
+pub(crate) const EXTENT_LOG2: i32 = 13;
+/// The largest scale, `2¹⁹`: keeps the ray epsilon (`10⁻⁴` for scenes smaller than one unit)
+/// below 64 units.
+pub(crate) const MAX_SCALE_LOG2: i32 = 19;
+
+/// Smallest sphere radius after scaling, in units (`2¹⁶` raw I16F16 steps): normals then
+/// carry at least 16 bits. In scene terms: a radius at least `2⁻¹³` of the scene's extent.
+pub const MIN_SCALED_RADIUS: f32 = 1.0;
+/// Largest `tan(vfov/2)·max(1, width/height)`: keeps primary-ray directions within ±256.
+pub const MAX_PLANE_SCALE: f32 = 127.0;
+/// Largest `kd·albedo`, `ks`, colour, and distant-light `colour·intensity` per channel:
+/// they are U16F16 and two of them multiply and add without wrapping.
+pub const MAX_LEVEL: f32 = 32_767.0;
+
+/// A sphere's per-frame constants, in scaled units.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FixedSphere {
+    pub center: V3<Len>,
+    /// `eye − centre`: the primary rays' origin offset.
+    pub eye_offset: V3<Len>,
+    pub radius_sq: I32F32,
+    /// `1/r` of the raw radius bits, as [`inv_sqrt`] returns it: `y·2^-shift`.
+    pub inv_radius: (u32, u32),
+    pub kd_albedo: V3<U16F16>,
+    pub ks: U16F16,
+    pub shininess: Exact,
+    pub blinn: bool,
+    /// The screen rectangle, or `None` if the sphere is off screen.
+    pub bounds: Option<Bounds>,
+}
+
+/// A light's per-frame constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FixedLight {
+    /// `to_light`: unit vector toward the light; `arriving`: `colour·intensity`.
+    Distant {
+        to_light: V3<Unit>,
+        arriving: V3<U16F16>,
+    },
+    /// `power`: `colour·intensity/4π` times the scale squared, per channel, exact; arriving
+    /// is `power/d²` in scaled units.
+    Point { position: V3<Len>, power: V3<Exact> },
+}
+
+/// A scene prepared for the fixed-point path at one size: integers only per row and pixel.
+///
+/// ```
+/// use shadeline::{exponent_series, PreparedFixed, Render, Rgb565};
+/// let frame = PreparedFixed::new(&exponent_series()?, 64, 48)?;
+/// let mut line = [Rgb565::default(); 64];
+/// frame.render_line(24, &mut line)?;
+/// assert_ne!(line[20], line[0]); // a sphere, then the background
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
+    pub(crate) width: u32,
+    pub(crate) height: u32,
+    pub(crate) eye: V3<Len>,
+    /// Half a pixel to the right on the image plane `z = 1`: `right·tan(vfov/2)/h`.
+    pub(crate) step_x: V3<I16F48>,
+    /// Half a pixel up: `up·tan(vfov/2)/h`.
+    pub(crate) step_y: V3<I16F48>,
+    pub(crate) forward: V3<I16F48>,
+    pub(crate) epsilon: Len,
+    pub(crate) background: [u32; 3],
+    pub(crate) spheres: heapless::Vec<FixedSphere, S>,
+    pub(crate) lights: heapless::Vec<FixedLight, L>,
+    pub(crate) use_spans: bool,
+}
+
+fn out_of_range(item: Item, field: &'static str) -> RenderError {
+    RenderError::OutOfFixedRange { item, field }
+}
+
+fn to_len(v: Vec3, scale: f32, item: Item, field: &'static str) -> Result<V3<Len>, RenderError> {
+    let c = [v.x, v.y, v.z].map(|c| Len::checked_from_num(c * scale));
+    match c {
+        [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
+        _ => Err(out_of_range(item, field)),
+    }
+}
+
+fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
+    let c = [v.x, v.y, v.z].map(|c| I16F48::checked_from_num(c * scale));
+    match c {
+        [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
+        _ => Err(out_of_range(Item::Camera, "vfov")),
+    }
+}
+
+/// Per-channel levels checked against [`MAX_LEVEL`].
+fn to_levels(c: [f32; 3], item: Item, field: &'static str) -> Result<V3<U16F16>, RenderError> {
+    let mut out = [U16F16::ZERO; 3];
+    for (o, v) in out.iter_mut().zip(c) {
+        if !(0.0..=MAX_LEVEL).contains(&v) {
+            return Err(out_of_range(item, field));
+        }
+        *o = U16F16::checked_from_num(v).ok_or(out_of_range(item, field))?;
+    }
+    Ok(out)
+}
+
+/// `2^k` as an `f32`, for `k` in `-126..=127`.
+fn pow2(k: i32) -> f32 {
+    f32::from_bits(((k + 127).clamp(1, 254) as u32) << 23)
+}
+
+/// The power of two `k` such that the scene's extent times `2^k` is below `2^EXTENT_LOG2`
+/// units, as large as possible up to [`MAX_SCALE_LOG2`].
+fn scale_log2<const S: usize, const L: usize>(scene: &Scene<S, L>) -> i32 {
+    let mut extent = scene.camera().position.max_abs();
+    for s in scene.spheres() {
+        extent = extent.max(s.center.max_abs() + s.radius);
+    }
+    for l in scene.lights() {
+        if let Light::Point { position, .. } = l {
+            extent = extent.max(position.max_abs());
+        }
+    }
+    // extent = f·2^e with f in [½, 1): extent·2^(EXTENT_LOG2 − e) < 2^EXTENT_LOG2.
+    let (_, e) = libm::frexpf(extent);
+    (EXTENT_LOG2 - e).min(MAX_SCALE_LOG2)
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Prepares `scene` for a `width × height` image on the fixed path.
+    ///
+    /// Fails with [`RenderError::BadSize`] like [`Prepared::new`](crate::Prepared::new), and
+    /// with [`RenderError::OutOfFixedRange`] if a number does not fit the fixed formats (see
+    /// the [module table](crate::fixed)): a sphere smaller than `2⁻¹³` of the scene's extent
+    /// (`radius`), a field of view or aspect ratio with `tan(vfov/2)·max(1, w/h)` above
+    /// [`MAX_PLANE_SCALE`] (`vfov`), and `kd·albedo`, `ks`, or a distant light's
+    /// `colour·intensity` above [`MAX_LEVEL`] in a channel (`albedo`/`kd`, `ks`,
+    /// `color`/`intensity`).
+    pub fn new(scene: &Scene<S, L>, width: u32, height: u32) -> Result<Self, RenderError> {
+        if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
+            return Err(RenderError::BadSize { width, height });
+        }
+        let camera = scene.camera();
+        let (right, up, forward) = scene.camera_basis();
+        let tan = libm::tanf(camera.vfov_degrees * (core::f32::consts::PI / 360.0));
+        let (width_f, height_f) = (width as f32, height as f32);
+        let x_scale = (width_f / height_f) * tan;
+        if !(tan <= MAX_PLANE_SCALE && x_scale <= MAX_PLANE_SCALE) {
+            return Err(out_of_range(Item::Camera, "vfov"));
+        }
+        let half_pixel = tan / height_f;
+
+        let k = scale_log2(scene);
+        let scale = pow2(k);
+        let eye = to_len(camera.position, scale, Item::Camera, "position")?;
+        let epsilon = Len::checked_from_num(scene.ray_epsilon() * scale)
+            .ok_or(out_of_range(Item::Camera, "position"))?;
+        let view = View {
+            eye: camera.position,
+            right,
+            up,
+            forward,
+            half_pixel,
+            width,
+            height,
+        };
+
+        let mut spheres = heapless::Vec::new();
+        for (i, s) in scene.spheres().iter().enumerate() {
+            let item = Item::Sphere(i);
+            let m = &s.material;
+            let center = to_len(s.center, scale, item, "center")?;
+            let radius = Len::checked_from_num(s.radius * scale)
+                .filter(|r| *r >= MIN_SCALED_RADIUS)
+                .ok_or(out_of_range(item, "radius"))?;
+            let radius_raw = radius.to_bits() as i64;
+            let inv_radius =
+                inv_sqrt((radius_raw * radius_raw) as u64).ok_or(out_of_range(item, "radius"))?;
+            to_levels([m.albedo.r, m.albedo.g, m.albedo.b], item, "albedo")?;
+            let kd_albedo = Vec3::new(m.albedo.r, m.albedo.g, m.albedo.b).scale(m.kd);
+            let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
+            let [ks, _, _] = to_levels([m.ks, 0.0, 0.0], item, "ks")?;
+            let sphere = FixedSphere {
+                center,
+                eye_offset: [0, 1, 2].map(|c| eye[c] - center[c]),
+                radius_sq: I32F32::from_bits(radius_raw * radius_raw),
+                inv_radius,
+                kd_albedo,
+                ks,
+                shininess: Exact::from_f32(m.shininess),
+                blinn: m.model == Model::BlinnPhong,
+                bounds: view.bounds(s.center, s.radius),
+            };
+            // Same capacity as the scene: cannot fail.
+            let _ = spheres.push(sphere);
+        }
+
+        let mut lights = heapless::Vec::new();
+        for (i, l) in scene.lights().iter().enumerate() {
+            let item = Item::Light(i);
+            let light = match *l {
+                Light::Distant {
+                    direction,
+                    color,
+                    intensity,
+                } => {
+                    to_levels([color.r, color.g, color.b], item, "color")?;
+                    let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
+                    let d = (-direction).normalized().unwrap_or_default();
+                    let d =
+                        [d.x, d.y, d.z].map(|c| (Unit::saturating_from_num(c).to_bits()) as i64);
+                    FixedLight::Distant {
+                        to_light: normalize(d).ok_or(out_of_range(item, "direction"))?,
+                        arriving: to_levels(
+                            [arriving.x, arriving.y, arriving.z],
+                            item,
+                            "intensity",
+                        )?,
+                    }
+                }
+                Light::Point {
+                    position,
+                    color,
+                    intensity,
+                } => {
+                    let power = Vec3::new(color.r, color.g, color.b)
+                        .scale(intensity / (4.0 * core::f32::consts::PI))
+                        .scale(pow2(2 * k));
+                    let power = [power.x, power.y, power.z];
+                    if !power.iter().all(|p| p.is_finite()) {
+                        return Err(out_of_range(item, "intensity"));
+                    }
+                    FixedLight::Point {
+                        position: to_len(position, scale, item, "position")?,
+                        power: power.map(Exact::from_f32),
+                    }
+                }
+            };
+            let _ = lights.push(light);
+        }
+
+        let bg = scene.background();
+        Ok(PreparedFixed {
+            width,
+            height,
+            eye,
+            step_x: to_wide(right, half_pixel)?,
+            step_y: to_wide(up, half_pixel)?,
+            forward: to_wide(forward, 1.0)?,
+            epsilon,
+            background: [bg.r, bg.g, bg.b].map(|c| U16F16::saturating_from_num(c).to_bits()),
+            spheres,
+            lights,
+            use_spans: true,
+        })
+    }
+
+    /// Turns the screen-rectangle spans on (the default) or off. Off, every pixel tests every
+    /// sphere: kept for the test that spans change no pixel, and for benchmarks.
+    pub fn with_spans(mut self, on: bool) -> Self {
+        self.use_spans = on;
+        self
+    }
+}

@@ -1,0 +1,102 @@
+//! The row driver of the fixed path: [`Render`] for [`PreparedFixed`].
+//!
+//! Like the float driver: spans (here each sphere's prepared screen rectangle, so a row costs
+//! two comparisons per sphere), covered runs merged with the float path's own
+//! `merge_runs`, background filled outside them with one encoded pixel, the kernel inside.
+//! Within a run the unnormalized primary direction advances by one integer addition per
+//! pixel (`2·step_x`), which is exactly the value `(2x + 1 − w)·step_x` would give: no
+//! rounding accumulates. Rows, pixels and slices are only reached through `get_mut` and
+//! iterators, and every index is checked, so nothing here can panic.
+
+use super::kernel::ray;
+use super::prepare::PreparedFixed;
+use super::vector::V3;
+use crate::pixel::{FixedShade, HitRecord, Pixel};
+use crate::render::{check_line, merge_runs, Render, RenderError};
+use crate::spans::Span;
+use fixed::types::I16F48;
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Each sphere's span on row `y`, in scene order (`None`: not on this row). With spans
+    /// off, every sphere spans the whole row.
+    fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
+        let full = Span {
+            start: 0,
+            end: self.width,
+        };
+        self.spheres
+            .iter()
+            .map(|s| {
+                if self.use_spans {
+                    s.bounds.and_then(|b| b.on_row(y))
+                } else {
+                    Some(full)
+                }
+            })
+            .collect()
+    }
+
+    /// The unnormalized primary direction of pixel `(x, y)`:
+    /// `forward + (h − 2y − 1)·step_y + (2x + 1 − w)·step_x`, exact in I16F48.
+    fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
+        let dy = self.height as i64 - 2 * y as i64 - 1;
+        let dx = 2 * x as i64 + 1 - self.width as i64;
+        [0, 1, 2].map(|i| {
+            let v = self.forward[i].to_bits()
+                + dy.saturating_mul(self.step_y[i].to_bits())
+                + dx.saturating_mul(self.step_x[i].to_bits());
+            I16F48::from_bits(v)
+        })
+    }
+}
+
+impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
+    fn width(&self) -> u32 {
+        self.width
+    }
+
+    fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError> {
+        check_line(y, out.len(), self.width, self.height)?;
+        let spans = self.row_spans(y);
+        let runs = merge_runs::<S>(&spans);
+        let background = P::encode_fixed(&FixedShade {
+            color: self.background,
+            hit: HitRecord::default(),
+        });
+        let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
+
+        let mut x = 0usize;
+        for run in &runs {
+            let (start, end) = (run.start as usize, run.end as usize);
+            if let Some(gap) = out.get_mut(x..start) {
+                gap.fill(background);
+            }
+            x = end;
+            let Some(run_pixels) = out.get_mut(start..end) else {
+                continue;
+            };
+            let mut dir = self.direction(run.start, y);
+            for (px, column) in run_pixels.iter_mut().zip(run.start..) {
+                let shaded = ray(dir).and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS));
+                *px = match shaded {
+                    Some(s) => P::encode_fixed(&FixedShade {
+                        color: s.color,
+                        hit: s.hit,
+                    }),
+                    None => background,
+                };
+                for (c, a) in dir.iter_mut().zip(advance) {
+                    *c = I16F48::from_bits(c.to_bits().saturating_add(a));
+                }
+            }
+        }
+        if let Some(tail) = out.get_mut(x..) {
+            tail.fill(background);
+        }
+        Ok(())
+    }
+}
