@@ -17,9 +17,10 @@ use crate::spans::Span;
 use fixed::types::I16F48;
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
-    /// Each sphere's span on row `y`, in scene order (`None`: not on this row). With spans
-    /// off, every sphere spans the whole row.
-    fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
+    /// Each sphere's span on row `y`, in scene order (`None`: not on this row): the columns
+    /// of its screen rectangle. With spans off ([`PreparedFixed::with_spans`]) every sphere
+    /// spans the whole row.
+    pub fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
         let full = Span {
             start: 0,
             end: self.width,

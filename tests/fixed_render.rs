@@ -1,0 +1,309 @@
+//! The fixed path's row driver and prepare step: spans change no pixel, rows of any size and
+//! in any order give the same frame, bad requests and out-of-range scenes are refused with
+//! the same typed errors as the float path.
+
+mod common;
+use common::*;
+use shadeline::*;
+
+/// A pixel format that keeps everything the fixed kernel produced: the raw U16F16 colour and
+/// the hit record.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+struct Raw(FixedShade);
+
+impl Pixel for Raw {
+    const NEEDS_HITS: bool = true;
+    fn encode(_: &Shade) -> Self {
+        Raw::default()
+    }
+    fn encode_fixed(shade: &FixedShade) -> Self {
+        Raw(*shade)
+    }
+}
+
+fn assert_spans_change_nothing<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    w: u32,
+    h: u32,
+    what: &str,
+) {
+    let naive = PreparedFixed::<S, L>::new(scene, w, h)
+        .unwrap()
+        .with_spans(false);
+    let spans = PreparedFixed::<S, L>::new(scene, w, h).unwrap();
+    let want: Vec<Raw> = frame(&naive);
+    let got: Vec<Raw> = frame(&spans);
+    if let Some(i) = got.iter().zip(&want).position(|(a, b)| a != b) {
+        panic!(
+            "{what}: pixel {i} differs with spans: {:?} vs {:?}",
+            got[i], want[i]
+        );
+    }
+}
+
+#[test]
+fn spans_change_no_pixel() {
+    let scene = exponent_series().unwrap();
+    for (w, h) in [(320, 240), (1, 1), (7, 5), (67, 3), (3, 67)] {
+        assert_spans_change_nothing(&scene, w, h, &format!("exponent series {w}x{h}"));
+    }
+    for (i, scene) in random_scenes(64, 0x5eed_0002).iter().enumerate() {
+        let (w, h) = (93 + (i as u32 % 9), 61);
+        assert_spans_change_nothing(scene, w, h, &format!("random scene {i}"));
+    }
+}
+
+#[test]
+fn spans_change_no_pixel_with_spheres_near_and_around_the_camera() {
+    // Spheres reaching the camera's side plane, containing the eye, or behind it: the
+    // rectangles must fall back to the whole frame or stay conservative.
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 3.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 90.0,
+    };
+    let mut scene: Scene<8, 2> = Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.1)).unwrap();
+    for (c, r) in [
+        (Vec3::new(1.5, 0.0, 2.5), 1.0),
+        (Vec3::new(0.0, 0.0, 3.2), 0.5),
+        (Vec3::new(-2.0, 1.0, 4.0), 0.7),
+        (Vec3::new(0.0, -1.2, 1.0), 1.1),
+        (Vec3::new(0.3, 0.2, 0.0), 0.4),
+    ] {
+        scene
+            .add_sphere(Sphere {
+                center: c,
+                radius: r,
+                material: Material::default(),
+            })
+            .unwrap();
+    }
+    scene
+        .add_light(Light::Point {
+            position: Vec3::new(0.0, 3.0, 3.0),
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 200.0,
+        })
+        .unwrap();
+    for (w, h) in [(160, 120), (97, 203)] {
+        assert_spans_change_nothing(&scene, w, h, &format!("near spheres {w}x{h}"));
+    }
+}
+
+#[test]
+fn spans_skip_work_without_losing_pixels() {
+    let scene = exponent_series().unwrap();
+    let f = PreparedFixed::new(&scene, 320, 240).unwrap();
+    let hits: Vec<Raw> = frame(&f);
+    let mut covered = 0usize;
+    for y in 0..240u32 {
+        for (k, span) in f.row_spans(y).iter().enumerate() {
+            for x in 0..320u32 {
+                let inside = span.is_some_and(|s| s.start <= x && x < s.end);
+                if hits[(y * 320 + x) as usize].0.hit.sphere == Some(k as u16) {
+                    assert!(inside, "pixel ({x},{y}) hits sphere {k} outside its span");
+                }
+                covered += inside as usize;
+            }
+        }
+    }
+    let hit = hits.iter().filter(|h| h.0.hit.sphere.is_some()).count();
+    println!(
+        "spans cover {covered} sphere-pixels for {hit} hit pixels, of {}",
+        320 * 240
+    );
+    assert!(
+        covered < hit * 2,
+        "spans are loose: {covered} for {hit} hits"
+    );
+}
+
+#[test]
+fn rows_in_any_order_and_every_pixel_format_agree() {
+    let scene = exponent_series().unwrap();
+    let f = PreparedFixed::new(&scene, 67, 31).unwrap();
+    let whole: Vec<Rgb565> = frame(&f);
+    let mut line = vec![Rgb565::default(); 67];
+    for y in (0..31).rev() {
+        f.render_line(y, &mut line).unwrap();
+        assert_eq!(&line[..], &whole[(y as usize * 67)..(y as usize + 1) * 67]);
+    }
+    // Rgb888 and the raw colour encode the same shade.
+    let raw: Vec<Raw> = frame(&f);
+    let rgb: Vec<Rgb888> = frame(&f);
+    for (r, c) in raw.iter().zip(&rgb) {
+        assert_eq!(Rgb888::encode_fixed(&r.0), *c);
+    }
+}
+
+#[test]
+fn bad_rows_and_buffers_are_refused_like_the_float_path() {
+    let scene = exponent_series().unwrap();
+    let fixed = PreparedFixed::new(&scene, 16, 8).unwrap();
+    let float = Prepared::<Scalar>::new(&scene, 16, 8).unwrap();
+    let mut short = [Rgb565::default(); 15];
+    let mut ok = [Rgb565::default(); 16];
+    assert_eq!(
+        fixed.render_line(0, &mut short),
+        float.render_line(0, &mut short)
+    );
+    assert!(matches!(
+        fixed.render_line(0, &mut short),
+        Err(RenderError::LineLength {
+            expected: 16,
+            got: 15
+        })
+    ));
+    assert_eq!(
+        fixed.render_line(8, &mut ok),
+        Err(RenderError::RowOutOfRange { y: 8, height: 8 })
+    );
+    let mut frame_buf = [Rgb565::default(); 16 * 7];
+    assert_eq!(
+        fixed.render_frame(&mut frame_buf),
+        Err(RenderError::FrameLength {
+            expected: 128,
+            got: 112
+        })
+    );
+    for (w, h) in [(0, 1), (1, 0), (MAX_DIMENSION + 1, 1)] {
+        assert_eq!(
+            PreparedFixed::new(&scene, w, h).err(),
+            Some(RenderError::BadSize {
+                width: w,
+                height: h
+            })
+        );
+    }
+}
+
+fn camera() -> Camera {
+    Camera {
+        position: Vec3::new(0.0, 0.0, 10.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 40.0,
+    }
+}
+
+fn refused(scene: &Scene<4, 2>, w: u32, h: u32) -> Option<(Item, &'static str)> {
+    match PreparedFixed::new(scene, w, h) {
+        Err(RenderError::OutOfFixedRange { item, field }) => Some((item, field)),
+        Err(e) => panic!("unexpected error {e}"),
+        Ok(_) => None,
+    }
+}
+
+#[test]
+fn scenes_that_do_not_fit_are_refused_naming_the_field() {
+    let base = || {
+        let mut s: Scene<4, 2> = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+        s.add_sphere(Sphere {
+            center: Vec3::new(0.0, 0.0, 0.0),
+            radius: 1.0,
+            material: Material::default(),
+        })
+        .unwrap();
+        s
+    };
+    assert_eq!(refused(&base(), 32, 32), None);
+
+    // A sphere below 2^-13 of the scene's extent.
+    let mut s = base();
+    s.add_sphere(Sphere {
+        center: Vec3::new(2.0, 0.0, 0.0),
+        radius: 1.0e-4,
+        material: Material::default(),
+    })
+    .unwrap();
+    assert_eq!(refused(&s, 32, 32), Some((Item::Sphere(1), "radius")));
+
+    // The same ratio is fine at any absolute size: scaling is by powers of two.
+    let mut s: Scene<4, 2> = Scene::new(
+        Camera {
+            position: Vec3::new(0.0, 0.0, 1.0e5),
+            ..camera()
+        },
+        LinearRgb::new(0.0, 0.0, 0.0),
+    )
+    .unwrap();
+    s.add_sphere(Sphere {
+        center: Vec3::new(0.0, 0.0, 0.0),
+        radius: 1.0e4,
+        material: Material::default(),
+    })
+    .unwrap();
+    assert_eq!(refused(&s, 32, 32), None);
+
+    // A field of view (or aspect ratio) whose image plane is wider than ±127.
+    let mut s: Scene<4, 2> = Scene::new(
+        Camera {
+            vfov_degrees: 179.9,
+            ..camera()
+        },
+        LinearRgb::new(0.0, 0.0, 0.0),
+    )
+    .unwrap();
+    s.add_sphere(Sphere {
+        center: Vec3::new(0.0, 0.0, 0.0),
+        radius: 1.0,
+        material: Material::default(),
+    })
+    .unwrap();
+    assert_eq!(refused(&s, 32, 32), Some((Item::Camera, "vfov")));
+    assert_eq!(refused(&base(), 60_000, 10), Some((Item::Camera, "vfov")));
+
+    // Material weights and distant-light levels above MAX_LEVEL.
+    let heavy = |kd: f32, ks: f32| {
+        let mut s = base();
+        let material = Material {
+            kd,
+            ks,
+            albedo: LinearRgb::new(1.0, 1.0, 1.0),
+            ..Material::default()
+        };
+        s.add_sphere(Sphere {
+            center: Vec3::new(3.0, 0.0, 0.0),
+            radius: 1.0,
+            material,
+        })
+        .unwrap();
+        s
+    };
+    assert_eq!(
+        refused(&heavy(1.0e5, 0.1), 8, 8),
+        Some((Item::Sphere(1), "kd"))
+    );
+    assert_eq!(
+        refused(&heavy(0.1, 1.0e5), 8, 8),
+        Some((Item::Sphere(1), "ks"))
+    );
+    let mut s = base();
+    s.add_light(Light::Distant {
+        direction: Vec3::new(0.0, -1.0, 0.0),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 1.0e6,
+    })
+    .unwrap();
+    assert_eq!(refused(&s, 8, 8), Some((Item::Light(0), "intensity")));
+
+    // A very bright point light is not refused: arriving light saturates per pixel.
+    let mut s = base();
+    s.add_light(Light::Point {
+        position: Vec3::new(0.0, 0.0, 1.0),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 1.0e12,
+    })
+    .unwrap();
+    assert_eq!(refused(&s, 8, 8), None);
+
+    let e = RenderError::OutOfFixedRange {
+        item: Item::Sphere(3),
+        field: "radius",
+    };
+    assert_eq!(
+        e.to_string(),
+        "sphere 3: `radius` does not fit the fixed-point path's number formats"
+    );
+}
