@@ -124,6 +124,24 @@ fn exponent_series_within_budget_per_size_and_per_n() {
 }
 
 #[test]
+fn point_lights_and_blinn_phong_within_budget() {
+    let scene = point_lights_blinn_phong().unwrap();
+    let (all, per_sphere) = measure(&scene, 400, 300);
+    println!("\npoint lights, Blinn-Phong 400x300\n{HEADER}");
+    println!("{}", all.row("whole frame"));
+    for (s, sphere) in per_sphere.iter().zip(scene.spheres()) {
+        println!(
+            "{}",
+            s.row(&format!(
+                "{:?} n = {}",
+                sphere.material.model, sphere.material.shininess
+            ))
+        );
+    }
+    all.check("point lights, Blinn-Phong", 400 * 300);
+}
+
+#[test]
 fn random_scenes_within_budget() {
     let (w, h) = (240, 180);
     println!("\n64 random scenes at {w}x{h}\n{HEADER}");

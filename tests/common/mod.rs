@@ -202,3 +202,68 @@ pub fn agreement<R: Render>(r: &R, reference: &[RefPixel]) -> Agreement {
     }
     a
 }
+
+/// Three spheres, two Blinn-Phong and one Phong (a large one as the floor), lit by two
+/// coloured point lights (one close enough to clip its highlight) and a dim distant light;
+/// the spheres shadow the floor.
+pub fn point_lights_blinn_phong() -> Result<Scene<4, 4>, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(1.0, 2.5, 9.0),
+        look_at: Vec3::new(0.0, 0.5, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 45.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.05))?;
+    let spheres = [
+        (
+            Vec3::new(-1.8, 0.8, 0.0),
+            1.2,
+            LinearRgb::new(0.8, 0.2, 0.1),
+            30.0,
+            Model::BlinnPhong,
+        ),
+        (
+            Vec3::new(1.2, 0.6, -0.5),
+            1.0,
+            LinearRgb::new(0.1, 0.6, 0.9),
+            600.0,
+            Model::BlinnPhong,
+        ),
+        (
+            Vec3::new(0.0, -100.0, 0.0),
+            99.5,
+            LinearRgb::new(0.5, 0.5, 0.5),
+            7.5,
+            Model::Phong,
+        ),
+    ];
+    for (center, radius, albedo, shininess, model) in spheres {
+        scene.add_sphere(Sphere {
+            center,
+            radius,
+            material: Material {
+                albedo,
+                kd: 0.9,
+                ks: 0.6,
+                shininess,
+                model,
+            },
+        })?;
+    }
+    scene.add_light(Light::Point {
+        position: Vec3::new(-3.0, 5.0, 4.0),
+        color: LinearRgb::new(1.0, 0.9, 0.7),
+        intensity: 900.0,
+    })?;
+    scene.add_light(Light::Point {
+        position: Vec3::new(2.5, 1.2, 1.2),
+        color: LinearRgb::new(0.4, 0.6, 1.0),
+        intensity: 60.0,
+    })?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(0.3, -1.0, -0.6),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 0.2,
+    })?;
+    Ok(scene)
+}
