@@ -25,16 +25,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             start: 0,
             end: self.width,
         };
-        self.spheres
-            .iter()
-            .map(|s| {
-                if self.use_spans {
-                    s.bounds.and_then(|b| b.on_row(y))
-                } else {
-                    Some(full)
-                }
-            })
-            .collect()
+        let mut out = heapless::Vec::new();
+        for s in &self.spheres {
+            let span = if self.use_spans {
+                s.bounds.and_then(|b| b.on_row(y))
+            } else {
+                Some(full)
+            };
+            // Same capacity as the sphere list: cannot fail. (Not `collect`: heapless's
+            // `FromIterator` panics on overflow, and a panic path would stay in the binary.)
+            let _ = out.push(span);
+        }
+        out
     }
 
     /// The unnormalized primary direction of pixel `(x, y)`:
