@@ -8,6 +8,9 @@
 use crate::lane::Lane;
 use core::ops::{Add, Mul, Neg, Sub};
 
+/// `2^64`: multiplying by it is exact for every vector `normalized` lifts.
+const TWO_POW_64: f32 = 18_446_744_073_709_551_616.0;
+
 /// A 3-component vector: a point, a direction or an offset in scene units.
 ///
 /// ```
@@ -84,13 +87,21 @@ impl Vec3<f32> {
     /// The unit vector along `self`, or `None` for a zero or non-finite vector.
     ///
     /// The vector is first divided by its largest component, so the squared length neither
-    /// overflows for huge inputs nor underflows for tiny ones.
+    /// overflows for huge inputs nor underflows for tiny ones. A vector whose largest
+    /// component is below `1e-30` (subnormals included, where `1/m` would overflow to `inf`
+    /// and give `0·inf = NaN`) is first scaled by `2^64`, which is exact.
     pub fn normalized(self) -> Option<Self> {
         let m = self.max_abs();
         if !(m > 0.0 && m.is_finite()) {
             return None;
         }
-        let s = self.scale(1.0 / m);
+        let (v, m) = if m < 1.0e-30 {
+            let lifted = self.scale(TWO_POW_64);
+            (lifted, lifted.max_abs())
+        } else {
+            (self, m)
+        };
+        let s = v.scale(1.0 / m);
         let len = libm::sqrtf(s.dot(s));
         Some(s.scale(1.0 / len))
     }
