@@ -190,6 +190,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             kd_albedo.y * diffuse.y,
             kd_albedo.z * diffuse.z,
         ) + specular * ks;
+        // kd·albedo (up to 1e12) times arriving light (up to 1e30 per light) can exceed
+        // f32::MAX: saturate there, so the output is finite. Every term is ≥ 0 and finite,
+        // so the sum is never NaN, and `min` leaves every finite value's bits unchanged.
+        let cap = W::Lane::splat(f32::MAX);
+        let shaded = V::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap));
         packet.color = V::select(any_hit, shaded, background);
         packet
     }
