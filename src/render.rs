@@ -142,11 +142,16 @@ pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Ve
     for span in spans.iter().flatten() {
         let _ = runs.push(*span);
     }
-    // Insertion sort by start: S is small and this is once per row.
+    // Insertion sort by start: S is small and this is once per row. Written with a slice
+    // pattern instead of indexing so that no bounds check (and no panic path) is left for
+    // the firmware's link-time panic proof to find.
     for i in 1..runs.len() {
         let mut j = i;
-        while j > 0 && runs[j - 1].start > runs[j].start {
-            runs.swap(j - 1, j);
+        while j > 0 {
+            match runs.get_mut(j - 1..=j) {
+                Some([a, b]) if a.start > b.start => core::mem::swap(a, b),
+                _ => break,
+            }
             j -= 1;
         }
     }
