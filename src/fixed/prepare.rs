@@ -228,8 +228,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     to_levels([color.r, color.g, color.b], item, "color")?;
                     let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
                     let d = (-direction).normalized().unwrap_or_default();
-                    let d =
-                        [d.x, d.y, d.z].map(|c| (Unit::saturating_from_num(c).to_bits()) as i64);
+                    // `saturating_from_num` panics on NaN; this is the same saturation for
+                    // every other input, with no panic path for the firmware's link proof.
+                    let d = [d.x, d.y, d.z].map(|c| {
+                        let saturated = if c < 0.0 { Unit::MIN } else { Unit::MAX };
+                        Unit::checked_from_num(c).unwrap_or(saturated).to_bits() as i64
+                    });
                     FixedLight::Distant {
                         to_light: normalize(d).ok_or(out_of_range(item, "direction"))?,
                         arriving: to_levels(
@@ -269,7 +273,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             step_y: to_wide(up, half_pixel)?,
             forward: to_wide(forward, 1.0)?,
             epsilon,
-            background: [bg.r, bg.g, bg.b].map(|c| U16F16::saturating_from_num(c).to_bits()),
+            // Saturating, like `saturating_from_num`, but without its panic on NaN.
+            background: [bg.r, bg.g, bg.b].map(|c| {
+                let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
+                U16F16::checked_from_num(c).unwrap_or(saturated).to_bits()
+            }),
             spheres,
             lights,
             use_spans: true,
