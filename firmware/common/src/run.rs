@@ -1,0 +1,301 @@
+//! One rendering path end to end on a board: count covered pixels, render the frame with
+//! every row measured, CRC it, report one line.
+//!
+//! The order keeps everything that is not the render out of the measured regions: the
+//! covered-pixel count renders the frame once more into [`HitRecord`]s before the stack is
+//! painted and is never measured; the CRC is taken after each measured row (streaming) or
+//! after the frame (framebuffer); the report is formatted after everything. Each measured
+//! region is exactly one `render_line` call, so "instructions per frame" means the same
+//! thing whether rows go to a framebuffer or to a line buffer, on every board.
+//!
+//! The report is one line of `key=value` fields after a `shadeline-fw` tag, which
+//! `.ci/firmware` parses into the figures table:
+//!
+//! ```text
+//! shadeline-fw firmware=m0 path=fixed sink=line crc=0x… expected=0x… match=yes
+//!   instructions=… pixels=76800 per_pixel=… covered=… per_covered=… stack=… render_stack=…
+//! ```
+
+use crate::crc32::Crc32;
+use crate::meter::{InstructionCounter, Meter};
+use crate::stack;
+use crate::text::Line;
+use shadeline::{HitRecord, Render, Rgb565};
+
+/// What a firmware supplies about its board.
+pub trait Board {
+    /// The firmware's name in reports (`"m4f"`, `"m0"`, `"rv32"`).
+    fn name(&self) -> &'static str;
+    /// Writes text to the host console (semihosting). Errors are dropped: there is nowhere
+    /// else to report them, and the exit status still carries the verdict.
+    fn write(&mut self, text: &[u8]);
+    /// The current stack pointer.
+    fn stack_pointer(&self) -> usize;
+    /// The lowest address the stack may grow down to, and the stack's top (initial pointer).
+    fn stack_limits(&self) -> (usize, usize);
+}
+
+/// Where a path's pixels go.
+pub enum Sink<'a> {
+    /// A full `width × height` framebuffer, rows in place.
+    Frame(&'a mut [Rgb565]),
+    /// One `width`-pixel line buffer, reused for every row (the CRC is fed row by row).
+    Line(&'a mut [Rgb565]),
+}
+
+impl Sink<'_> {
+    fn name(&self) -> &'static str {
+        match self {
+            Sink::Frame(_) => "frame",
+            Sink::Line(_) => "line",
+        }
+    }
+}
+
+/// The verdict of a whole session.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Outcome {
+    /// Every path matched its CRC and every count was exact.
+    Pass,
+    /// Something did not.
+    Fail,
+}
+
+/// The figures of one path.
+struct Figures {
+    crc: u32,
+    instructions: Option<u64>,
+    covered: u64,
+    stack: usize,
+    render_stack: usize,
+    render_ok: bool,
+}
+
+/// A board, its calibrated meter and the running verdict.
+pub struct Session<B: Board, C: InstructionCounter> {
+    board: B,
+    meter: Meter<C>,
+    outcome: Outcome,
+    peak_stack: usize,
+}
+
+impl<B: Board, C: InstructionCounter> Session<B, C> {
+    /// Calibrates the counter and runs its self-test, reporting both. `None` (after a report)
+    /// if the counter cannot measure at all.
+    pub fn new(mut board: B, counter: C) -> Option<Self> {
+        let board_name = board.name();
+        let Some(meter) = Meter::new(counter) else {
+            let mut line = Line::new();
+            line.str("shadeline-fw firmware=")
+                .str(board_name)
+                .str(" error=counter-unusable\n");
+            board.write(line.as_bytes());
+            return None;
+        };
+        let mut session = Session {
+            board,
+            meter,
+            outcome: Outcome::Pass,
+            peak_stack: 0,
+        };
+        let test = session.meter.self_test();
+        let mut line = Line::new();
+        line.str("shadeline-fw firmware=")
+            .str(board_name)
+            .str(" counter=")
+            .str(session.meter.counter_name())
+            .field("overhead", session.meter.overhead())
+            .str(" selftest=");
+        match test {
+            Ok(n) => line.str("exact").field("measured", n),
+            Err(n) => {
+                session.outcome = Outcome::Fail;
+                line.str("wrong").field("measured", n)
+            }
+        };
+        line.byte(b'\n');
+        session.board.write(line.as_bytes());
+        Some(session)
+    }
+
+    /// Renders `path` into `sink`, measures it and reports it against `expected`.
+    /// `hits` is a `width`-long scratch row for counting covered pixels.
+    pub fn run<R: Render>(
+        &mut self,
+        path_name: &str,
+        path: &R,
+        mut sink: Sink<'_>,
+        hits: &mut [HitRecord],
+        expected: u32,
+    ) {
+        let sink_name = sink.name();
+        let board_name = self.board.name();
+        let figures = self.figures(path, &mut sink, hits);
+        let pixels = u64::from(path.width()) * u64::from(path.height());
+        let matched = figures.render_ok && figures.crc == expected;
+        if !matched || figures.instructions.is_none() {
+            self.outcome = Outcome::Fail;
+        }
+        let mut line = Line::new();
+        line.str("shadeline-fw firmware=")
+            .str(board_name)
+            .str(" path=")
+            .str(path_name)
+            .str(" sink=")
+            .str(sink_name)
+            .str(" crc=")
+            .hex32(figures.crc)
+            .str(" expected=")
+            .hex32(expected)
+            .str(if matched { " match=yes" } else { " match=no" });
+        match figures.instructions {
+            Some(n) => {
+                line.field("instructions", n)
+                    .field("pixels", pixels)
+                    .str(" per_pixel=")
+                    .ratio(n, pixels)
+                    .field("covered", figures.covered)
+                    .str(" per_covered=")
+                    .ratio(n, figures.covered);
+            }
+            None => {
+                line.str(" instructions=unknown");
+            }
+        }
+        line.field("stack", figures.stack as u64)
+            .field("render_stack", figures.render_stack as u64)
+            .byte(b'\n');
+        self.board.write(line.as_bytes());
+    }
+
+    /// Reports the verdict and the deepest stack of the session; returns the verdict.
+    pub fn finish(mut self) -> Outcome {
+        let board_name = self.board.name();
+        let mut line = Line::new();
+        line.str("shadeline-fw firmware=")
+            .str(board_name)
+            .str(match self.outcome {
+                Outcome::Pass => " result=pass",
+                Outcome::Fail => " result=fail",
+            })
+            .field("peak_stack", self.peak_stack as u64)
+            .byte(b'\n');
+        self.board.write(line.as_bytes());
+        self.outcome
+    }
+
+    /// Writes a line of free text (for boards that report something extra).
+    pub fn note(&mut self, text: &str) {
+        self.board.write(text.as_bytes());
+    }
+
+    /// Marks the session failed (a board-side error, such as a path that did not prepare).
+    pub fn fail(&mut self) {
+        self.outcome = Outcome::Fail;
+    }
+
+    fn figures<R: Render>(
+        &mut self,
+        path: &R,
+        sink: &mut Sink<'_>,
+        hits: &mut [HitRecord],
+    ) -> Figures {
+        let (lowest, top) = self.board.stack_limits();
+
+        // Covered pixels: not measured, but its stack counts toward the session's peak.
+        let paint_top = self.paint();
+        let covered = count_covered(path, hits);
+        self.note_stack(lowest, paint_top, top);
+
+        let paint_top = self.paint();
+        let (render_ok, instructions, crc) = match sink {
+            Sink::Frame(frame) => {
+                let (ok, n) = render_frame(&mut self.meter, path, frame);
+                let mut crc = Crc32::new();
+                crc.update(frame);
+                (ok, n, crc.value())
+            }
+            Sink::Line(line) => render_streamed(&mut self.meter, path, line),
+        };
+        // SAFETY: the same range `paint` just painted: free stack, word-aligned, readable.
+        let deepest = unsafe { stack::deepest_touched(lowest, paint_top) };
+        let sp = paint_top + stack::GUARD;
+        self.peak_stack = self.peak_stack.max(top - deepest);
+        Figures {
+            crc,
+            instructions,
+            covered,
+            stack: top - deepest,
+            render_stack: sp - deepest,
+            render_ok,
+        }
+    }
+
+    /// Paints the free stack below the current frame; returns the top of the painted range.
+    #[inline(never)]
+    fn paint(&self) -> usize {
+        let (lowest, _) = self.board.stack_limits();
+        let paint_top = (self.board.stack_pointer() - stack::GUARD) & !3;
+        // SAFETY: [lowest, paint_top) is below the live stack by GUARD bytes (room for
+        // `stack::paint`'s own frame), above .bss, word-aligned, and no interrupt is enabled.
+        unsafe { stack::paint(lowest, paint_top) };
+        paint_top
+    }
+
+    fn note_stack(&mut self, lowest: usize, paint_top: usize, top: usize) {
+        // SAFETY: the range `paint` just painted.
+        let deepest = unsafe { stack::deepest_touched(lowest, paint_top) };
+        self.peak_stack = self.peak_stack.max(top - deepest);
+    }
+}
+
+/// Renders every row of `path` into `frame`, one measured region per row.
+/// Returns whether every row rendered, and the total instructions if every count was exact.
+#[inline(never)]
+fn render_frame<C: InstructionCounter, R: Render>(
+    meter: &mut Meter<C>,
+    path: &R,
+    frame: &mut [Rgb565],
+) -> (bool, Option<u64>) {
+    let width = path.width() as usize;
+    let mut ok = frame.len() == width * path.height() as usize;
+    let mut total = Some(0u64);
+    for (y, row) in frame.chunks_exact_mut(width.max(1)).enumerate() {
+        let (result, n) = meter.measure(|| path.render_line(y as u32, row));
+        ok &= result.is_ok();
+        total = total.zip(n).map(|(t, n)| t + n);
+    }
+    (ok, total)
+}
+
+/// Renders every row of `path` into the one `line` buffer, one measured region per row, and
+/// feeds each finished row to the CRC outside the region.
+#[inline(never)]
+fn render_streamed<C: InstructionCounter, R: Render>(
+    meter: &mut Meter<C>,
+    path: &R,
+    line: &mut [Rgb565],
+) -> (bool, Option<u64>, u32) {
+    let mut ok = true;
+    let mut total = Some(0u64);
+    let mut crc = Crc32::new();
+    for y in 0..path.height() {
+        let (result, n) = meter.measure(|| path.render_line(y, line));
+        ok &= result.is_ok();
+        total = total.zip(n).map(|(t, n)| t + n);
+        crc.update(line);
+    }
+    (ok, total, crc.value())
+}
+
+/// Pixels whose primary ray hits a sphere, found by rendering the frame into hit records.
+#[inline(never)]
+fn count_covered<R: Render>(path: &R, hits: &mut [HitRecord]) -> u64 {
+    let mut covered = 0;
+    for y in 0..path.height() {
+        if path.render_line(y, hits).is_ok() {
+            covered += hits.iter().filter(|h| h.sphere.is_some()).count() as u64;
+        }
+    }
+    covered
+}

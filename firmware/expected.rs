@@ -1,0 +1,22 @@
+// The frame every firmware renders and the CRCs it must produce: the one source of truth,
+// included (with `include!`) by the firmware's common crate and by the host test
+// `tests/firmware_crcs.rs`, which renders the same frames on the host and checks these
+// numbers, so firmware and host can never drift apart silently.
+//
+// CRC32/IEEE (the zlib/PNG one) over the RGB565 pixels, row-major, each pixel as its
+// little-endian u16 bytes.
+
+/// Width of the frame every firmware renders, in pixels.
+pub const WIDTH: u32 = 320;
+/// Height of the frame every firmware renders, in pixels.
+pub const HEIGHT: u32 = 240;
+
+/// CRC32 of the exponent series at 320×240 rendered by `Prepared::<Scalar>` into `Rgb565`.
+/// IEEE single precision with the same operations in the same order gives the same bits on
+/// every target, hard float (Cortex-M4F) or soft float (RV32IMAC).
+pub const SCALAR_RGB565_CRC32: u32 = 0xaea2_bfb6;
+
+/// CRC32 of the exponent series at 320×240 rendered by `PreparedFixed` into `Rgb565`: the
+/// golden value of `tests/fixed_golden.rs` (`GOLDEN_EXPONENT_SERIES_320X240`). Integer
+/// arithmetic only, so the same bits on every target.
+pub const FIXED_RGB565_CRC32: u32 = 0x9cfe_2a60;

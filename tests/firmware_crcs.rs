@@ -1,0 +1,59 @@
+//! The CRCs the firmware checks on target (`firmware/expected.rs`) are the host's: this test
+//! renders the same frames on the host and compares, so a change to the renderer that moves a
+//! pixel fails here, next to the constant to update, rather than only under QEMU. The fixed
+//! value is also `tests/fixed_golden.rs`'s golden; both tests failing together is the sign of
+//! a deliberate change to the fixed kernel.
+
+use shadeline::{exponent_series, Prepared, PreparedFixed, Render, Rgb565, Scalar};
+
+mod expected {
+    include!("../firmware/expected.rs");
+}
+
+/// CRC32/IEEE over the pixels as little-endian `u16` bytes, row-major: the firmware's rule.
+/// Bit by bit, straight from the definition (reflected, polynomial `0xEDB88320`), so it is an
+/// independent check of the firmware's table-driven one.
+fn rgb565_crc32(pixels: &[Rgb565]) -> u32 {
+    let mut crc = !0u32;
+    for byte in pixels.iter().flat_map(|px| px.0.to_le_bytes()) {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+fn frame<R: Render>(path: &R) -> Vec<Rgb565> {
+    let mut pixels = vec![Rgb565::default(); (path.width() * path.height()) as usize];
+    path.render_frame(&mut pixels).expect("frame renders");
+    pixels
+}
+
+#[test]
+fn scalar_crc_matches_the_firmware_constant() {
+    let scene = exponent_series().expect("built-in scene is valid");
+    let path = Prepared::<Scalar>::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
+    let crc = rgb565_crc32(&frame(&path));
+    assert_eq!(
+        crc,
+        expected::SCALAR_RGB565_CRC32,
+        "host scalar CRC is {crc:#010x}: update firmware/expected.rs"
+    );
+}
+
+#[test]
+fn fixed_crc_matches_the_firmware_constant() {
+    let scene = exponent_series().expect("built-in scene is valid");
+    let path = PreparedFixed::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
+    let crc = rgb565_crc32(&frame(&path));
+    assert_eq!(
+        crc,
+        expected::FIXED_RGB565_CRC32,
+        "host fixed CRC is {crc:#010x}: update firmware/expected.rs (and tests/fixed_golden.rs)"
+    );
+}
