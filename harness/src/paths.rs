@@ -6,7 +6,9 @@
 
 use crate::rows::{render_rows, render_rows_into};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
-use shadeline::{HitRecord, Prepared, Render, RenderError, Rgb888, Scalar, Simd4, Simd8};
+use shadeline::{
+    HitRecord, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar, Simd4, Simd8,
+};
 
 /// A frame prepared on some path, rendered whole into a new buffer on `threads` threads.
 ///
@@ -52,7 +54,7 @@ pub type Prepare = fn(&FileScene, u32, u32) -> Result<Box<dyn Frame>, RenderErro
 /// One path: its name on the command line and in reports, and how to prepare a frame on it.
 #[derive(Clone, Copy)]
 pub struct Path {
-    /// The name (`scalar`, `simd4`, `simd8`).
+    /// The name (`scalar`, `simd4`, `simd8`, `fixed`).
     pub name: &'static str,
     /// Prepares a frame on this path.
     pub prepare: Prepare,
@@ -84,6 +86,9 @@ pub const PATHS: &[Path] = &[
     }),
     path("simd8", |s, w, h| {
         boxed(Prepared::<Simd8, S, L>::new(s, w, h))
+    }),
+    path("fixed", |s, w, h| {
+        boxed(PreparedFixed::<S, L>::new(s, w, h))
     }),
 ];
 

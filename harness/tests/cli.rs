@@ -141,7 +141,7 @@ fn render_writes_an_rgb_png_of_the_asked_size() {
 fn the_thread_count_does_not_change_a_byte() {
     let dir = temp_dir("threads");
     std::fs::write(dir.join("scene.toml"), exponent_series_text()).unwrap();
-    for path in ["scalar", "simd4", "simd8"] {
+    for path in ["scalar", "simd4", "simd8", "fixed"] {
         let mut files = Vec::new();
         for threads in ["1", "3"] {
             let name = format!("{path}-{threads}.png");
@@ -190,7 +190,8 @@ fn compare_prints_one_row_per_path_and_writes_the_picture() {
     );
     assert!(out.status.success(), "{}", stderr(&out));
     let stdout = String::from_utf8_lossy(&out.stdout);
-    for path in ["scalar", "simd4", "simd8"] {
+    let paths = ["scalar", "simd4", "simd8", "fixed"];
+    for path in paths {
         assert!(
             stdout
                 .lines()
@@ -198,6 +199,7 @@ fn compare_prints_one_row_per_path_and_writes_the_picture() {
             "{stdout}"
         );
     }
+    // The reference, then one panel per path.
     let (w, h, ..) = read_png(&dir.join("compare.png"));
-    assert_eq!((w, h), (40 * 4, 30 * 2));
+    assert_eq!((w, h), (40 * (paths.len() as u32 + 1), 30 * 2));
 }
