@@ -5,7 +5,7 @@
 //! | `ray` | the primary ray through the pixel centre, normalized | I16F48 → I2F30 |
 //! | `hit` | the nearest sphere hit with `t > ε` among the pixel's candidate spheres | I16F16, I32F32 |
 //! | `normal` | `N = (P − C)·(1/r)`: no square root, `1/r` prepared | I16F16 → I2F30 |
-//! | `light` | per light: direction `L` toward it, arriving colour `I`, shadow-ray length | I2F30, U16F16 |
+//! | `lights` | per light: direction `L` toward it, arriving colour `I`, shadow-ray length | I2F30, U16F16 |
 //! | `shadow` | a ray from `P + ε·N` toward the light, tested against every sphere | as `hit` |
 //! | `diffuse` | `Σ vis·I·max(0, N·L)` | U16F16 |
 //! | `specular` | `Σ vis·I·lobe`, lobe `= (1 − h)^n`, `h = ½|R − V|²` or `½|N − H|²` | U3F61 → U1F31 → U16F16 |
@@ -23,7 +23,7 @@ use super::pow::lobe;
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{
-    dot_len_unit, dot_unit, len_times_unit, length_sq, normalize, to_len, Len, Unit, V3,
+    dot_len_unit, dot_unit, each3, len_times_unit, length_sq, normalize, to_len, Len, Unit, V3,
 };
 use crate::pixel::HitRecord;
 use crate::spans::Span;
@@ -58,7 +58,7 @@ pub(crate) fn ray(dir: V3<I16F48>) -> Option<V3<Unit>> {
 #[inline(always)]
 fn nearest_hit(oc: V3<Len>, dir: V3<Unit>, radius_sq: i64, eps: i64) -> Option<i64> {
     let b = dot_len_unit(oc, dir);
-    let f = [0, 1, 2].map(|i| (oc[i].to_bits() as i64).saturating_sub(len_times_unit(b, dir[i])));
+    let f = each3(|i| (oc[i].to_bits() as i64).saturating_sub(len_times_unit(b, dir[i])));
     let disc = radius_sq.saturating_sub(length_sq(f));
     if disc < 0 {
         return None;
@@ -84,13 +84,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let (p, n) = self.normal(sphere, d, t);
         let eps = self.epsilon.to_bits() as i64;
         let shadow_origin: V3<Len> =
-            [0, 1, 2].map(|i| to_len(p[i].to_bits() as i64 + len_times_unit(eps, n[i])));
+            each3(|i| to_len(p[i].to_bits() as i64 + len_times_unit(eps, n[i])));
 
         let mut diffuse = [0u32; 3];
         let mut specular = [0u32; 3];
         let mut shadowed = 0u32;
         for (light_index, light) in self.lights.iter().enumerate() {
-            let incoming = self.light(light, p);
+            let incoming = self.lights(light, p);
             if self.shadow(shadow_origin, &incoming) {
                 if record_hits && light_index < 32 {
                     shadowed |= 1 << light_index;
@@ -136,9 +136,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(always)]
     fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
         let step = d.map(|c| len_times_unit(t, c));
-        let p = [0, 1, 2].map(|i| to_len(self.eye[i].to_bits() as i64 + step[i]));
+        let p = each3(|i| to_len(self.eye[i].to_bits() as i64 + step[i]));
         let (y, shift) = s.inv_radius;
-        let n = [0, 1, 2].map(|i| {
+        let n = each3(|i| {
             // (P − C) from the offset, not from the rounded P: one rounding fewer.
             let pc = s.eye_offset[i].to_bits() as i64 + step[i];
             let v = pc.saturating_mul(y as i64) >> (shift - 30).min(63);
@@ -149,7 +149,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// Direction toward the light, arriving colour and shadow-ray length at `p`.
     #[inline(always)]
-    fn light(&self, light: &FixedLight, p: V3<Len>) -> Incoming {
+    /// (The `lights` stage, for one light: the float kernel's name.)
+    fn lights(&self, light: &FixedLight, p: V3<Len>) -> Incoming {
         match *light {
             FixedLight::Distant { to_light, arriving } => Incoming {
                 to_light,
@@ -157,7 +158,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 reach: None,
             },
             FixedLight::Point { position, power } => {
-                let lv = [0, 1, 2].map(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
+                let lv = each3(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
                 let d2 = length_sq(lv).max(0) as u64;
                 let Some((y, shift)) = inv_sqrt(d2) else {
                     // At the light: arriving light is capped, the direction is undefined.
@@ -190,8 +191,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     fn shadow(&self, origin: V3<Len>, incoming: &Incoming) -> bool {
         let eps = self.epsilon.to_bits() as i64;
         self.spheres.iter().any(|s| {
-            let oc = [0, 1, 2]
-                .map(|i| to_len(origin[i].to_bits() as i64 - s.center[i].to_bits() as i64));
+            let oc = each3(|i| to_len(origin[i].to_bits() as i64 - s.center[i].to_bits() as i64));
             nearest_hit(oc, incoming.to_light, s.radius_sq.to_bits(), eps)
                 .is_some_and(|t| incoming.reach.is_none_or(|reach| t < reach))
         })
@@ -212,17 +212,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let l = incoming.to_light;
         // u = R − V (Phong, R = −L + 2(N·L)N, V = −d) or N − H (Blinn-Phong), raw F30 in i64.
         let u: V3<i64> = if s.blinn {
-            let half = [0, 1, 2].map(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64);
+            let half = each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64);
             let Some(h) = normalize(half) else {
                 return [0; 3];
             };
-            [0, 1, 2].map(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64)
+            each3(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64)
         } else {
             if l == [Unit::ZERO; 3] {
                 return [0; 3];
             }
             let n_dot_l = dot_unit(n, l);
-            [0, 1, 2].map(|i| {
+            each3(|i| {
                 let r = ((2 * n_dot_l).saturating_mul(n[i].to_bits() as i64) >> 30)
                     - l[i].to_bits() as i64;
                 r + d[i].to_bits() as i64
@@ -242,7 +242,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(always)]
     fn encode(&self, s: &FixedSphere, diffuse: [u32; 3], specular: [u32; 3]) -> [u32; 3] {
         let ks = s.ks.to_bits() as u64;
-        [0, 1, 2].map(|c| {
+        each3(|c| {
             let kd = s.kd_albedo[c].to_bits() as u64;
             let a = (kd * diffuse[c] as u64) >> 16;
             let b = (ks * specular[c] as u64) >> 16;

@@ -14,7 +14,7 @@
 use super::exact::Exact;
 use super::roots::inv_sqrt;
 use super::spans::{Bounds, View};
-use super::vector::{normalize, Len, Unit, V3};
+use super::vector::{each3, normalize, Len, Unit, V3};
 use crate::render::RenderError;
 use crate::scene::{Item, Light, Model, Scene};
 use crate::vec3::Vec3;
@@ -203,7 +203,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let [ks, _, _] = to_levels([m.ks, 0.0, 0.0], item, "ks")?;
             let sphere = FixedSphere {
                 center,
-                eye_offset: [0, 1, 2].map(|c| eye[c] - center[c]),
+                eye_offset: each3(|c| eye[c] - center[c]),
                 radius_sq: I32F32::from_bits(radius_raw * radius_raw),
                 inv_radius,
                 kd_albedo,

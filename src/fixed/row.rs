@@ -10,7 +10,7 @@
 
 use super::kernel::ray;
 use super::prepare::PreparedFixed;
-use super::vector::V3;
+use super::vector::{each3, V3};
 use crate::pixel::{FixedShade, HitRecord, Pixel};
 use crate::render::{check_line, merge_runs, Render, RenderError};
 use crate::spans::Span;
@@ -44,7 +44,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
         let dy = self.height as i64 - 2 * y as i64 - 1;
         let dx = 2 * x as i64 + 1 - self.width as i64;
-        [0, 1, 2].map(|i| {
+        each3(|i| {
             let v = self.forward[i].to_bits()
                 + dy.saturating_mul(self.step_y[i].to_bits())
                 + dx.saturating_mul(self.step_x[i].to_bits());

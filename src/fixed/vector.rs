@@ -16,17 +16,26 @@ pub(crate) type Unit = I2F30;
 /// Three components.
 pub(crate) type V3<T> = [T; 3];
 
+/// `[f(0), f(1), f(2)]`: per-component work with constant indices. `each3(f)` means
+/// the same, but the optimiser does not always unroll it (it did not for thumbv6m), and then
+/// every `a[i]` inside keeps a bounds check: a panic path that fails the firmware's
+/// link-time panic proof. Here each index is a literal, so no check is ever emitted.
+#[inline(always)]
+pub(crate) fn each3<T>(mut f: impl FnMut(usize) -> T) -> [T; 3] {
+    [f(0), f(1), f(2)]
+}
+
 /// `a·b` for a length vector and a unit vector, as raw I16F16 bits in `i64`.
 #[inline(always)]
 pub(crate) fn dot_len_unit(a: V3<Len>, b: V3<Unit>) -> i64 {
-    let [x, y, z] = [0, 1, 2].map(|i| a[i].wide_mul(b[i]).to_bits());
+    let [x, y, z] = each3(|i| a[i].wide_mul(b[i]).to_bits());
     x.saturating_add(y).saturating_add(z) >> 30
 }
 
 /// `a·b` for two unit vectors, as raw I2F30 bits in `i64`.
 #[inline(always)]
 pub(crate) fn dot_unit(a: V3<Unit>, b: V3<Unit>) -> i64 {
-    let [x, y, z] = [0, 1, 2].map(|i| a[i].wide_mul(b[i]).to_bits());
+    let [x, y, z] = each3(|i| a[i].wide_mul(b[i]).to_bits());
     x.saturating_add(y).saturating_add(z) >> 30
 }
 
