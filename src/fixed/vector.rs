@@ -16,7 +16,7 @@ pub(crate) type Unit = I2F30;
 /// Three components.
 pub(crate) type V3<T> = [T; 3];
 
-/// `[f(0), f(1), f(2)]`: per-component work with constant indices. `each3(f)` means
+/// `[f(0), f(1), f(2)]`: per-component work with constant indices. `[0, 1, 2].map(f)` means
 /// the same, but the optimiser does not always unroll it (it did not for thumbv6m), and then
 /// every `a[i]` inside keeps a bounds check: a panic path that fails the firmware's
 /// link-time panic proof. Here each index is a literal, so no check is ever emitted.
