@@ -2,7 +2,7 @@
 //! `f64` reference.
 //!
 //! ```text
-//! shadeline render  [SCENE.toml] [--path scalar|simd4|simd8|simd] [-o spheres.png]
+//! shadeline render  [SCENE.toml] [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
 //!                   [--threads N] [--width W] [--height H] [--repeat N]
 //! shadeline compare [SCENE.toml] [-o compare.png] [--threads N] [--width W] [--height H]
 //! ```
@@ -38,7 +38,7 @@ enum Command {
         #[command(flatten)]
         input: Input,
         /// The path: `scalar` (the float reference of the crate, the default), `simd4`,
-        /// `simd8`, or `simd` for the widest.
+        /// `simd8`, `simd` for the widest, or `fixed` (integers only per pixel).
         #[arg(long, default_value = "scalar", value_parser = PossibleValuesParser::new(paths::names()))]
         path: String,
         /// Where to write the PNG.
