@@ -38,7 +38,7 @@
 //! | SIMD | [`Prepared<Simd4>`], [`Prepared<Simd8>`] | `wide::f32x4` / `f32x8` lanes | bit-identical to scalar |
 //! | fixed | [`PreparedFixed`] | integers only per pixel ([`fixed`] formats) | within 2 levels of the reference, the same bits on every target |
 //!
-//! An independent `f64` renderer, [`reference`], written straight from the formulas and
+//! An independent `f64` renderer, [`reference`](mod@reference), written straight from the formulas and
 //! sharing no code with the kernels, is what the paths are measured against.
 //!
 //! ## Layout

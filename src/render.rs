@@ -1,6 +1,6 @@
 //! The row driver: one row of pixels into the caller's slice.
 //!
-//! For row `y` it computes every sphere's [`Span`](crate::Span), merges them into covered runs,
+//! For row `y` it computes every sphere's [`Span`], merges them into covered runs,
 //! fills everything outside the runs with the background pixel (encoded once per row, no
 //! per-pixel work), and walks each run in packets of the path's lane count, handing the kernel
 //! only the spheres whose spans touch the packet. The last packet of a run computes full lanes
