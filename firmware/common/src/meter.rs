@@ -3,10 +3,10 @@
 //! A board supplies an [`InstructionCounter`] (SysTick under QEMU `-icount` on Cortex-M,
 //! `minstret` on RISC-V). [`Meter::new`] calibrates it by measuring an empty region — what
 //! remains is the cost of the two reads themselves — and [`Meter::measure`] subtracts that from
-//! every region. [`Meter::self_test`] then checks exactness on code of known length: two
-//! hand-written loops of `2·n` instructions each must measure exactly `2·(n₂ − n₁)` apart.
-//! (The two counts are chosen so that both load their `n` with the same instruction sequence
-//! on all three targets, so the difference is exactly the extra loop iterations.)
+//! every region. [`Meter::self_test`] then checks exactness on code of known length:
+//! hand-written loops of `2·n` instructions each must measure exactly `2·(n₂ − n₁)` apart
+//! (the loops are one function, with `n` passed through `black_box`, so the code around them
+//! is the same and the difference is exactly the extra iterations).
 //!
 //! Compiler fences keep the region's memory effects between the reads; the region is a call
 //! into the renderer, which the optimiser cannot hoist past a volatile counter read.
@@ -27,10 +27,11 @@ pub trait InstructionCounter {
     fn name(&self) -> &'static str;
 }
 
-/// Loop counts for [`Meter::self_test`]: both need the same instruction sequence to load
-/// (above 4095 for RISC-V's `addi`, above 255 for Thumb's `movs`, below 65536 for `movw`).
+/// Loop counts for [`Meter::self_test`]. The long one runs 6 M instructions, several SysTick
+/// periods on both Cortex-M boards, so reload counting is checked too.
 const SELF_TEST_SHORT: u32 = 5_000;
-const SELF_TEST_LONG: u32 = 65_000;
+const SELF_TEST_MEDIUM: u32 = 65_000;
+const SELF_TEST_LONG: u32 = 3_005_000;
 
 /// An [`InstructionCounter`] with its read overhead calibrated out.
 pub struct Meter<C> {
@@ -67,19 +68,27 @@ impl<C: InstructionCounter> Meter<C> {
         (result, count.and_then(|n| n.checked_sub(self.overhead)))
     }
 
-    /// Measures two loops of known length; `Ok` with the measured difference if it is exact.
+    /// Measures three loops of known length; `Ok` with the longest difference if both
+    /// differences are exact, `Err` with the first wrong one otherwise.
     pub fn self_test(&mut self) -> Result<u64, u64> {
-        let (short, long) = (
-            core::hint::black_box(SELF_TEST_SHORT),
-            core::hint::black_box(SELF_TEST_LONG),
+        let [short, medium, long] =
+            core::hint::black_box([SELF_TEST_SHORT, SELF_TEST_MEDIUM, SELF_TEST_LONG]);
+        let (a, b, c) = (
+            self.known_loop(short),
+            self.known_loop(medium),
+            self.known_loop(long),
         );
-        let (a, b) = (self.known_loop(short), self.known_loop(long));
-        let expected = 2 * u64::from(SELF_TEST_LONG - SELF_TEST_SHORT);
-        match (a, b) {
-            (Some(a), Some(b)) if b.checked_sub(a) == Some(expected) => Ok(b - a),
-            (Some(a), Some(b)) => Err(b.wrapping_sub(a)),
-            _ => Err(0),
+        let (Some(a), Some(b), Some(c)) = (a, b, c) else {
+            return Err(0);
+        };
+        let expect = |n: u32| 2 * u64::from(n - SELF_TEST_SHORT);
+        if b.wrapping_sub(a) != expect(SELF_TEST_MEDIUM) {
+            return Err(b.wrapping_sub(a));
         }
+        if c.wrapping_sub(a) != expect(SELF_TEST_LONG) {
+            return Err(c.wrapping_sub(a));
+        }
+        Ok(c - a)
     }
 
     /// One instantiation for every loop length, so both self-test regions are the same code.

@@ -1,0 +1,57 @@
+//! shadeline on a Cortex-M0 (QEMU `microbit`, nRF51: 16 KiB RAM, no FPU): the exponent series
+//! at 320×240 on the fixed-point path, streamed row by row through one 320-pixel line buffer
+//! (a 150 KiB framebuffer could never fit), with the CRC fed from each finished row. Reported
+//! over semihosting with the instruction count and stack high-water mark; exits 0 only if
+//! the CRC matches.
+//!
+//! What has to fit in the 16 KiB: the scene and the prepared frame (on `main`'s stack), the
+//! 640-byte line buffer and the 2.5 KiB hit-record row used to count covered pixels (both in
+//! `.bss`), and the render's own stack. The report's `peak_stack` plus `llvm-size`'s
+//! `.data + .bss` is the RAM it needs.
+//!
+//! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
+//! `.cargo/config.toml`).
+
+#![no_std]
+#![no_main]
+
+use common::cortex_m_board::{exit, CortexMBoard, SysTickCounter};
+use common::expected::HEIGHT;
+use common::expected::{FIXED_RGB565_CRC32, WIDTH};
+use common::{Outcome, Session, Sink};
+use cortex_m_rt::entry;
+use shadeline::{exponent_series, HitRecord, PreparedFixed, Rgb565};
+
+/// The nRF51's processor clock as QEMU models it, which clocks SysTick: 16 MHz.
+const HCLK_HZ: u32 = 16_000_000;
+
+#[entry]
+fn main() -> ! {
+    // cortex-m-rt turns these into `&'static mut`s owned by `main`: in .bss, no unsafe.
+    static mut LINE: [Rgb565; WIDTH as usize] = [Rgb565(0); WIDTH as usize];
+    static mut HITS: [HitRecord; WIDTH as usize] = [HitRecord {
+        sphere: None,
+        shadowed: 0,
+    }; WIDTH as usize];
+
+    let board = CortexMBoard::new("m0");
+    let Some(peripherals) = cortex_m::Peripherals::take() else {
+        exit(false)
+    };
+    let counter = SysTickCounter::new(peripherals.SYST, HCLK_HZ);
+    let Some(mut session) = Session::new(board, counter) else {
+        exit(false)
+    };
+    let Ok(scene) = exponent_series() else {
+        session.note("shadeline-fw error=scene\n");
+        exit(false)
+    };
+    match PreparedFixed::new(&scene, WIDTH, HEIGHT) {
+        Ok(path) => session.run("fixed", &path, Sink::Line(LINE), HITS, FIXED_RGB565_CRC32),
+        Err(_) => {
+            session.note("shadeline-fw error=prepare-fixed\n");
+            session.fail();
+        }
+    }
+    exit(session.finish() == Outcome::Pass)
+}
