@@ -201,6 +201,12 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         hits: &mut [HitRecord],
     ) -> Figures {
         let (lowest, top) = self.board.stack_limits();
+        if self.board.stack_pointer() < lowest + stack::GUARD {
+            // Already below the stack's limit: painting would hit live data, and any figure
+            // would be wrong. Fail loudly instead.
+            self.outcome = Outcome::Fail;
+            self.note("shadeline-fw error=stack-overflow\n");
+        }
 
         // Covered pixels: not measured, but its stack counts toward the session's peak.
         let paint_top = self.paint();
@@ -235,9 +241,10 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
     #[inline(never)]
     fn paint(&self) -> usize {
         let (lowest, _) = self.board.stack_limits();
-        let paint_top = (self.board.stack_pointer() - stack::GUARD) & !3;
+        let paint_top = (self.board.stack_pointer().saturating_sub(stack::GUARD)) & !3;
         // SAFETY: [lowest, paint_top) is below the live stack by GUARD bytes (room for
-        // `stack::paint`'s own frame), above .bss, word-aligned, and no interrupt is enabled.
+        // `stack::paint`'s own frame), above .bss, word-aligned; no interrupt can fire here
+        // (the only one, SysTick on Cortex-M, is enabled only inside measured regions).
         unsafe { stack::paint(lowest, paint_top) };
         paint_top
     }

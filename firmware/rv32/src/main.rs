@@ -1,0 +1,83 @@
+//! shadeline on RV32IMAC (QEMU `virt`, no FPU): the exponent series at 320×240 into a full
+//! RGB565 framebuffer, on the scalar `f32` path (every float operation in software, which
+//! must still give the host's bits: IEEE single precision with the same operations) and the
+//! fixed-point path. Reported over semihosting with CRC, instruction count (`minstret`) and
+//! stack high-water mark; exits 0 only if both CRCs match.
+//!
+//! Run with `cargo rv32` from `firmware/` (the alias and the QEMU runner are in
+//! `.cargo/config.toml`).
+
+#![no_std]
+#![no_main]
+
+mod board;
+
+use board::{exit, Minstret, Rv32Board};
+use common::expected::{FIXED_RGB565_CRC32, HEIGHT, SCALAR_RGB565_CRC32, WIDTH};
+use common::{Outcome, Session, Sink};
+use riscv_rt::entry;
+use shadeline::{exponent_series, HitRecord, Prepared, PreparedFixed, Rgb565, Scalar};
+
+const PIXELS: usize = (WIDTH * HEIGHT) as usize;
+
+/// Both paths' frames and the hit-record row, in `.bss`.
+struct Buffers {
+    frame: [Rgb565; PIXELS],
+    hits: [HitRecord; WIDTH as usize],
+}
+
+#[entry]
+fn main() -> ! {
+    let buffers = take_buffers();
+    let Some(mut session) = Session::new(Rv32Board::new(), Minstret) else {
+        exit(false)
+    };
+    let Ok(scene) = exponent_series() else {
+        session.note("shadeline-fw error=scene\n");
+        exit(false)
+    };
+    match Prepared::<Scalar>::new(&scene, WIDTH, HEIGHT) {
+        Ok(path) => session.run(
+            "scalar",
+            &path,
+            Sink::Frame(&mut buffers.frame),
+            &mut buffers.hits,
+            SCALAR_RGB565_CRC32,
+        ),
+        Err(_) => {
+            session.note("shadeline-fw error=prepare-scalar\n");
+            session.fail();
+        }
+    }
+    match PreparedFixed::new(&scene, WIDTH, HEIGHT) {
+        Ok(path) => session.run(
+            "fixed",
+            &path,
+            Sink::Frame(&mut buffers.frame),
+            &mut buffers.hits,
+            FIXED_RGB565_CRC32,
+        ),
+        Err(_) => {
+            session.note("shadeline-fw error=prepare-fixed\n");
+            session.fail();
+        }
+    }
+    exit(session.finish() == Outcome::Pass)
+}
+
+/// The buffers, zeroed with `.bss`. (`riscv::singleton!` would build the 150 KiB value on
+/// the stack first and overflow it; riscv-rt's `entry` has no `static mut` conversion.)
+static mut BUFFERS: Buffers = Buffers {
+    frame: [Rgb565(0); PIXELS],
+    hits: [HitRecord {
+        sphere: None,
+        shadowed: 0,
+    }; WIDTH as usize],
+};
+
+/// The buffers as the one `&'static mut` the program ever makes of them.
+fn take_buffers() -> &'static mut Buffers {
+    // SAFETY: called once, from `main`, before anything else could reference BUFFERS; single
+    // hart, no interrupts.
+    unsafe { &mut *core::ptr::addr_of_mut!(BUFFERS) }
+}
