@@ -16,7 +16,7 @@
 //! | quantity | accepted |
 //! |---|---|
 //! | coordinates (camera, centres, point lights) | `|v| ≤` [`MAX_COORDINATE`] per component |
-//! | radius | `0 < r ≤` [`MAX_COORDINATE`] |
+//! | radius | [`MIN_RADIUS`] `≤ r ≤` [`MAX_COORDINATE`] |
 //! | colours, albedo, `kd`, `ks` | `0 ≤ v ≤` [`MAX_VALUE`] |
 //! | light intensity | `0 ≤ i ≤` [`MAX_INTENSITY`] |
 //! | shininess `n` | `0 < n ≤` [`MAX_SHININESS`] |
@@ -29,6 +29,9 @@ use core::fmt;
 
 /// Largest accepted magnitude of a coordinate component and of a radius, in scene units.
 pub const MAX_COORDINATE: f32 = 1.0e6;
+/// Smallest accepted radius: `r²` is then a normal `f32` and `1/r` is finite. Below it the
+/// squared radius underflows to 0 and the normal `(P − C)·(1/r)` becomes `0·inf = NaN`.
+pub const MIN_RADIUS: f32 = 1.0e-18;
 /// Largest accepted colour component, albedo component, `kd` or `ks`.
 pub const MAX_VALUE: f32 = 1.0e6;
 /// Largest accepted light intensity.
@@ -87,7 +90,7 @@ pub struct Material {
 pub struct Sphere {
     /// The centre.
     pub center: Vec3,
-    /// The radius, `> 0`.
+    /// The radius, in `[MIN_RADIUS, MAX_COORDINATE]`.
     pub radius: f32,
     /// The surface.
     pub material: Material,
@@ -150,6 +153,8 @@ pub enum Problem {
     Negative,
     /// Larger than the accepted range (see the module docs).
     TooLarge,
+    /// Positive, but smaller than the accepted range (see the module docs).
+    TooSmall,
     /// A direction of zero length.
     ZeroLength,
     /// The camera looks at its own position.
@@ -212,6 +217,7 @@ impl fmt::Display for Problem {
             Problem::NotPositive => "must be greater than zero",
             Problem::Negative => "must not be negative",
             Problem::TooLarge => "is larger than the accepted range",
+            Problem::TooSmall => "is smaller than the accepted range",
             Problem::ZeroLength => "must not be a zero-length vector",
             Problem::LookAtEqualsPosition => "must differ from the camera position",
             Problem::UpParallelToView => "must not be parallel to the view direction",
@@ -231,6 +237,9 @@ impl fmt::Display for SceneError {
                 write!(f, "{item}: `{field}` {problem}")?;
                 if *problem == Problem::TooLarge {
                     write!(f, " (at most {:e})", limit_of(field))?;
+                }
+                if *problem == Problem::TooSmall {
+                    write!(f, " (at least {MIN_RADIUS:e})")?;
                 }
                 Ok(())
             }
@@ -371,6 +380,9 @@ impl Sphere {
         let c = Check { item };
         c.point("center", self.center)?;
         c.positive("radius", self.radius, MAX_COORDINATE)?;
+        if self.radius < MIN_RADIUS {
+            return Err(c.err("radius", Problem::TooSmall));
+        }
         self.material.check(item)
     }
 }

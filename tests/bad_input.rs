@@ -8,7 +8,7 @@
 //! defined one (which sphere each pixel hits, which lights are blocked). The fuzz targets in `fuzz/` search the same space at
 //! random; the regression cases at the end are inputs they found.
 
-use shadeline::scene::{MAX_COORDINATE, MAX_INTENSITY, MAX_SHININESS, MAX_VALUE};
+use shadeline::scene::{MAX_COORDINATE, MAX_INTENSITY, MAX_SHININESS, MAX_VALUE, MIN_RADIUS};
 use shadeline::*;
 
 type S = Scene<4, 4>;
@@ -905,4 +905,34 @@ fn subnormal_camera_up_gives_an_upright_camera() {
     assert_eq!(right, Vec3::new(1.0, 0.0, 0.0));
     assert_eq!(up, Vec3::new(0.0, 1.0, 0.0));
     assert_eq!(forward, Vec3::new(0.0, 0.0, -1.0));
+}
+
+#[test]
+fn radius_below_min_radius_is_refused() {
+    // A subnormal radius passed as positive: r² underflowed to 0, 1/r overflowed to inf, and a
+    // ray through the centre shaded (P − C)·inf = NaN; tiny radii also made the scanline
+    // spans miss pixels the per-pixel test hit through rounding.
+    let want = invalid(Item::Sphere(0), "radius", Problem::TooSmall);
+    for r in [
+        1.0e-45,
+        1.0e-39,
+        f32::MIN_POSITIVE,
+        1.0e-20,
+        MIN_RADIUS * 0.99,
+    ] {
+        assert_eq!(radius_error(r), want, "radius {r:e}");
+    }
+    assert_eq!(
+        want.to_string(),
+        "sphere 0: `radius` is smaller than the accepted range (at least 1e-18)"
+    );
+    // The smallest accepted radius renders: finite, and the centre ray hits it.
+    let mut s = empty_scene();
+    s.add_sphere(Sphere {
+        radius: MIN_RADIUS,
+        ..sphere()
+    })
+    .unwrap();
+    s.add_light(distant()).unwrap();
+    frame(&s, 9, 9);
 }
