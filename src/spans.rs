@@ -15,8 +15,10 @@
 //! pixel the per-pixel test would hit is ever left out (tested on random scenes against the
 //! brute-force renderer, bit for bit):
 //!
-//! - the discriminant gets a relative slack of `1e-4`, which also opens a small span on rows
-//!   that graze the top or bottom of the silhouette;
+//! - the discriminant gets a slack of `1e-4` relative to the size of the terms it is computed
+//!   from (not to its own size: on a row tangent to the sphere the exact value is 0 and the
+//!   computed one is all rounding), which also opens a small span on rows that graze the top
+//!   or bottom of the silhouette;
 //! - the pixel range is widened by two pixels on each side;
 //! - if the eye is inside or on the sphere (`k ≤ 0`), or the conic is not an ellipse
 //!   across the row (`k − a² ≤ 1e-6·k`: the sphere reaches the camera's side plane), the span
@@ -61,7 +63,8 @@ pub(crate) fn sphere_span(
         end: width,
     });
     let oc = -eye_offset;
-    let k = oc.dot(oc) - radius_sq;
+    let oc2 = oc.dot(oc);
+    let k = oc2 - radius_sq;
     if !(k > 0.0) {
         return full;
     }
@@ -75,7 +78,9 @@ pub(crate) fn sphere_span(
     let ab = a * b;
     let c = k * beta - b * b;
     let disc = ab * ab - quad * c;
-    let slack = DISC_SLACK * (ab * ab + (quad * c).abs());
+    // `c` cancels `kβ` against `b²` (and `k` cancels `|oc|²` against `r²`): the slack scales
+    // with those terms, so a row whose exact `c` is 0 (tangent to the sphere) keeps its span.
+    let slack = DISC_SLACK * (ab * ab + quad * ((oc2 + radius_sq) * beta + b * b));
     if disc < -slack {
         return None;
     }

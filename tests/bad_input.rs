@@ -936,3 +936,35 @@ fn radius_below_min_radius_is_refused() {
     s.add_light(distant()).unwrap();
     frame(&s, 9, 9);
 }
+
+#[test]
+fn row_tangent_to_a_sphere_keeps_its_span() {
+    // The camera row's plane touches the sphere at the look_at point, and the centre pixel's
+    // ray grazes it there. The span's slack was relative to the discriminant's own size,
+    // which is all rounding on such a row, so the span was dropped and the pixel the
+    // per-pixel test (and the f64 reference) hits was filled with the background.
+    let c = Camera {
+        position: Vec3::new(0.25, 4.25, 0.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 0.0, -0.25),
+        vfov_degrees: 6.25,
+    };
+    let mut s = S::new(c, LinearRgb::new(6.25, 0.0, 0.0)).unwrap();
+    s.add_sphere(Sphere {
+        center: Vec3::new(0.0, 0.0, 6.25),
+        radius: 6.25,
+        ..sphere()
+    })
+    .unwrap();
+    for (w, h) in [(1, 1), (3, 3), (9, 9)] {
+        let (x, y) = (w / 2, h / 2);
+        let want = reference::shade_pixel(&s, w, h, x, y).hit;
+        let spans = Prepared::<Scalar, 4, 4>::new(&s, w, h).unwrap();
+        let naive = spans.clone().with_spans(false);
+        assert_eq!(render(&naive, y).hits[x as usize], want, "{w}x{h}");
+        assert_eq!(render(&spans, y).hits[x as usize], want, "{w}x{h}");
+        let (a, b) = (render(&spans, y), render(&naive, y));
+        assert!(bits(&a) == bits(&b) && a.hits == b.hits, "{w}x{h}");
+        rows(&s, w, h, &[y]);
+    }
+}
