@@ -34,7 +34,9 @@ impl Line {
         self.bytes.get(..self.len).unwrap_or(&[])
     }
 
-    /// Appends one byte; dropped if the line is full.
+    /// Appends one byte; dropped if the line is full. (Not inlined, like [`Line::str`]: the
+    /// report is not hot, and inlined into every call site it costs kilobytes of flash.)
+    #[inline(never)]
     pub fn byte(&mut self, b: u8) -> &mut Self {
         if let Some(slot) = self.bytes.get_mut(self.len) {
             *slot = b;
@@ -44,6 +46,7 @@ impl Line {
     }
 
     /// Appends text.
+    #[inline(never)]
     pub fn str(&mut self, s: &str) -> &mut Self {
         for &b in s.as_bytes() {
             self.byte(b);
