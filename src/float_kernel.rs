@@ -137,7 +137,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     let dist = d2.sqrt();
                     let reached = zero.lt(d2);
                     let to_light = lv * W::Lane::select(reached, one / dist, zero);
-                    let atten = W::Lane::select(reached, one / d2, W::Lane::splat(MAX_ARRIVING));
+                    // 1/d² overflows to inf when d² is subnormal (the light within ~1e-19 of
+                    // P, reachable with a tiny field of view): saturate it at f32::MAX, or a
+                    // black channel of the light's colour would give 0·inf = NaN.
+                    let inv_d2 = (one / d2).min(W::Lane::splat(f32::MAX));
+                    let atten = W::Lane::select(reached, inv_d2, W::Lane::splat(MAX_ARRIVING));
                     let cap = W::Lane::splat(MAX_ARRIVING);
                     let arriving = V::splat(power) * atten;
                     let arriving = V::new(

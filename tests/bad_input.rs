@@ -968,3 +968,28 @@ fn row_tangent_to_a_sphere_keeps_its_span() {
         rows(&s, w, h, &[y]);
     }
 }
+
+#[test]
+fn point_light_a_hair_from_the_hit_points_with_a_black_channel_is_not_nan() {
+    // Found by the `scene` fuzz target. A field of view of 1.6e-19 degrees puts the hit points
+    // of a row within 1e-19 of a point light sitting on the surface: d² is subnormal, 1/d²
+    // overflowed to inf, and the light's black red channel gave 0·inf = NaN.
+    let c = Camera {
+        vfov_degrees: 1.643_243_9e-19,
+        ..camera()
+    };
+    let mut s = S::new(c, LinearRgb::new(0.1, 0.2, 0.3)).unwrap();
+    s.add_sphere(sphere()).unwrap();
+    s.add_light(Light::Point {
+        position: Vec3::new(0.0, 0.0, 1.0),
+        color: LinearRgb::new(0.0, 40.0, 0.1),
+        intensity: 0.2,
+    })
+    .unwrap();
+    let rows = rows_checked(&s, 36, 58982, &[39322, 29491], false);
+    for row in &rows {
+        assert!(row.hits.iter().all(|h| h.sphere == Some(0)));
+        // No red arrives; green and blue are lit or black, never NaN (checked in `rows`).
+        assert!(row.linear.iter().all(|c| c.r == 0.0));
+    }
+}
