@@ -1,0 +1,129 @@
+#!/usr/bin/env python3
+"""Writes the seed corpus of the `scene` and `paths_agree` fuzz targets.
+
+Each seed, `corpus/<target>/seed-<name>`, is a `SceneInput` (fuzz/src/lib.rs) encoded the way
+`arbitrary` 1.x decodes it (the `seed-` prefix keeps it clear of the hex names libFuzzer gives
+the inputs it finds, which git ignores): an enum variant is a little-endian u32 `v` selecting
+variant `(v * count) >> 32`; integers are little-endian; a bool is a byte whose low bit is the
+value; a `Vec` is a sequence of elements each preceded by a byte 1, ended by a byte 0. Numbers
+are written as `Num::Bits` (exact f32) unless a seed is about the edge-value table. Run:
+
+    python3 fuzz/seeds.py
+"""
+import os
+import struct
+
+NUM_VARIANTS = 5  # Small, Fraction, Power, Special, Bits
+SPECIAL = 3
+BITS = 4
+
+
+def variant(i, count):
+    return struct.pack("<I", ((2 * i + 1) << 32) // (2 * count))
+
+
+def num(x):
+    """An exact f32 (`Num::Bits`); already encoded numbers pass through."""
+    if isinstance(x, bytes):
+        return x
+    return variant(BITS, NUM_VARIANTS) + struct.pack("<f", x)
+
+
+def special(index):
+    """An entry of the edge-value table (`Num::Special`)."""
+    return variant(SPECIAL, NUM_VARIANTS) + bytes([index])
+
+
+def v3(x, y, z):
+    return b"".join(num(n) for n in (x, y, z))
+
+
+def sphere(center, radius, albedo=(0.18, 0.18, 0.18), kd=0.8, ks=0.2, n=50.0, blinn=False):
+    return b"\x01" + v3(*center) + num(radius) + v3(*albedo) + num(kd) + num(ks) + num(n) + bytes([blinn])
+
+
+def distant(direction, color=(1.0, 1.0, 1.0), intensity=2.0):
+    return b"\x01" + variant(0, 2) + v3(*direction) + v3(*color) + num(intensity)
+
+
+def point(position, color=(1.0, 1.0, 1.0), intensity=50.0):
+    return b"\x01" + variant(1, 2) + v3(*position) + v3(*color) + num(intensity)
+
+
+def scene(camera, spheres, lights, width, height, rows=(0, 0), background=(0.1, 0.2, 0.3)):
+    """`width` is the image width (1..=67), encoded as `width - 1`."""
+    position, look_at, up, vfov = camera
+    out = v3(*position) + v3(*look_at) + v3(*up) + num(vfov)
+    out += v3(*background)
+    out += b"".join(spheres) + b"\x00"
+    out += b"".join(lights) + b"\x00"
+    out += bytes([width - 1]) + struct.pack("<H", height) + struct.pack("<HH", *rows)
+    return out
+
+
+FRONT = ((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 40.0)
+UNIT = sphere((0.0, 0.0, 0.0), 1.0)
+
+SEEDS = {
+    # The shared exponent series: five spheres (the fifth exceeds the capacity of 4).
+    "exponent-series": scene(
+        ((0.0, 1.0, 12.0), (0.0, 1.0, 0.0), (0.0, 1.0, 0.0), 36.87),
+        [sphere((x, 1.0, 0.0), 0.9, ks=ks, n=n) for x, ks, n in
+         [(-4.0, 0.04, 2.0), (-2.0, 0.08, 10.0), (0.0, 0.1, 50.0), (2.0, 0.15, 250.0), (4.0, 0.2, 1250.0)]],
+        [distant((-0.4347962, -0.8416416, 0.3202994), intensity=5.0)],
+        67, 49, rows=(24, 20), background=(0.235294, 0.67451, 0.843137)),
+    "point-and-distant-blinn": scene(
+        FRONT,
+        [sphere((0.0, 0.0, 0.0), 1.0, albedo=(0.5, 0.2, 0.1), n=80.0, blinn=True),
+         sphere((1.5, 0.5, -1.0), 0.6)],
+        [point((2.0, 2.0, 3.0), intensity=200.0), distant((1.0, -1.0, -1.0))],
+        33, 21, rows=(10, 7)),
+    "camera-inside-sphere": scene(
+        FRONT, [sphere((0.0, 0.0, 5.0), 2.0), UNIT], [point((0.0, 0.5, 5.0))], 17, 11, rows=(5, 0)),
+    "light-inside-sphere": scene(
+        FRONT, [sphere((-1.2, 0.0, 0.0), 1.0), sphere((1.2, 0.0, 0.0), 1.0)],
+        [point((1.2, 0.0, 0.0))], 31, 15, rows=(7, 3)),
+    "point-light-at-hit-point": scene(
+        FRONT, [UNIT], [point((0.0, 0.0, 1.0))], 9, 9, rows=(4, 3)),
+    # Regression: a subnormal direction normalized to NaN.
+    "subnormal-directions": scene(
+        ((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1e-40, 0.0), 40.0), [UNIT],
+        [distant((-1e-45, 0.0, -1e-45))], 9, 9, rows=(4, 2)),
+    # Regression: kd*albedo*arriving overflowed to inf.
+    "brightest-light-on-surface": scene(
+        FRONT, [sphere((0.0, 0.0, 0.0), 1.0, albedo=(1e6, 1e6, 1e6), kd=1e6, ks=1e6, n=1.0)],
+        [point((0.0, 0.0, 1.0000001), color=(1e6, 1e6, 1e6), intensity=1e12)] * 3, 9, 9, rows=(4, 4)),
+    # Regression: a row tangent to a sphere lost its span.
+    "tangent-row": scene(
+        ((0.25, 4.25, 0.0), (0.0, 0.0, 0.0), (0.0, 0.0, -0.25), 6.25), [sphere((0.0, 0.0, 6.25), 6.25)],
+        [], 1, 1, background=(6.25, 0.0, 0.0)),
+    # Regression: a radius whose square underflows.
+    "tiny-radius": scene(
+        FRONT, [sphere((0.0, 0.0, 0.0), 1.1754944e-38), sphere((0.0, 0.0, 0.0), 1e-18)],
+        [distant((0.0, 0.0, -1.0))], 9, 9, rows=(4, 4)),
+    "extreme-fov": scene(
+        ((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), special(19)), [UNIT], [distant((0.0, -1.0, -1.0))],
+        65, 65, rows=(32, 31)),
+    # Edge-value table entries in every field.
+    "edge-values": scene(
+        ((special(13), special(14), special(6)), (0.0, 0.0, 0.0), (special(5), 1.0, 0.0), special(21)),
+        [sphere((special(13), 0.0, 0.0), special(30), albedo=(special(30),) * 3, kd=special(30),
+                ks=special(30), n=special(30))],
+        [distant((special(6), 0.0, special(7)), color=(special(30),) * 3, intensity=special(16)),
+         point((special(0), 0.0, 0.0))],
+        67, 65535, rows=(65534, 32767)),
+}
+
+
+def main():
+    root = os.path.dirname(os.path.abspath(__file__))
+    for target in ("scene", "paths_agree"):
+        directory = os.path.join(root, "corpus", target)
+        os.makedirs(directory, exist_ok=True)
+        for name, data in SEEDS.items():
+            with open(os.path.join(directory, "seed-" + name), "wb") as f:
+                f.write(data)
+
+
+if __name__ == "__main__":
+    main()
