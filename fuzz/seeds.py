@@ -101,6 +101,10 @@ SEEDS = {
     "tiny-radius": scene(
         FRONT, [sphere((0.0, 0.0, 0.0), 1.1754944e-38), sphere((0.0, 0.0, 0.0), 1e-18)],
         [distant((0.0, 0.0, -1.0))], 9, 9, rows=(4, 4)),
+    # Regression: a light within 1e-19 of the hit points (subnormal d²), black red channel.
+    "tiny-fov-light-on-surface": scene(
+        ((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 1.6432439e-19), [UNIT],
+        [point((0.0, 0.0, 1.0), color=(0.0, 40.0, 0.1), intensity=0.2)], 36, 58982, rows=(39322, 29491)),
     "extreme-fov": scene(
         ((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), special(19)), [UNIT], [distant((0.0, -1.0, -1.0))],
         65, 65, rows=(32, 31)),
