@@ -1,21 +1,230 @@
-//! The reflection models, in one place: what the kernels evaluate for each light.
+//! The reflection models, in one place: every model as a function of the directions, written
+//! once over a small numeric trait ([`Real`]) so that the float kernel evaluates it on its
+//! lanes (`f32`, `f32x4`, `f32x8`) and the law tests (`tests/brdf_laws.rs`) on `f64`.
 //!
-//! Classic Phong, as in the lesson (no `1/π`, not normalized, not energy conserving):
+//! Notation: `N` the unit normal, `L` the unit vector toward the light (`ω_i`), `V` the unit
+//! vector toward the eye (`ω_o`), `R = 2(N·L)N − L` the light mirrored about the normal,
+//! `H = normalize(L + V)` the half vector, `cos θ_i = N·L`. A model is its BRDF `f(ω_i, ω_o)`;
+//! a light of arriving colour `I` adds `I·f·max(0, N·L)` to the pixel.
 //!
-//! ```text
-//! colour = kd · Σ_lights vis · albedo · I · max(0, N·L)
-//!        + ks · Σ_lights vis · I · max(0, R·V)^n
-//! R = D − 2(N·D)N      D = −L, the direction the light travels;   V toward the eye
-//! ```
+//! | model | `f(ω_i, ω_o)` | reciprocal |
+//! |---|---|---|
+//! | classic Phong (the lesson's) | `kd·albedo + ks·max(0, R·V)^n / cos θ_i` | no |
+//! | classic Blinn-Phong | `kd·albedo + ks·max(0, N·H)^n / cos θ_i` | no |
+//! | Lambert | `kd·albedo/π` | yes |
+//! | normalized Phong (Lafortune–Willems) | `kd·albedo/π + Σₖ wₖ·(nₖ + 2)/(2π)·max(0, R·V)^nₖ` | yes |
+//! | normalized Blinn-Phong | `kd·albedo/π + Σₖ wₖ·c(nₖ)·max(0, N·H)^nₖ`, `c(n) = (n + 2)(n + 4) / (8π(2^(−n/2) + n))` | yes |
 //!
-//! Classic Blinn-Phong replaces `R·V` by `N·H`, `H = normalize(L + V)`.
+//! The classic models are the lesson's code read as a BRDF: the lesson adds
+//! `ks·I·max(0, R·V)^n` to the pixel with no `cos θ_i`, so its BRDF carries `1/cos θ_i`, which
+//! is not symmetric in `ω_i` and `ω_o`; and it has no `1/π` and no normalization, so it can
+//! reflect up to about π times (diffuse) or `2π/(n + 1)` times (specular) the light it gets.
+//! `R·V = 2(N·L)(N·V) − L·V` and `N·H` are themselves symmetric, which is what makes the
+//! normalized lobes reciprocal.
 //!
-//! The specular term is never tinted by the albedo (a dielectric reflects the light's own
-//! colour). The kernels accumulate `Σ vis·I·max(0, N·L)` and `Σ vis·I·lobe` and apply
-//! `kd·albedo` and `ks` once per pixel; this module gives them the lobe's cosine.
+//! Normalizations. Phong's `(n + 2)/(2π)` makes the directional albedo of the lobe exactly 1
+//! when `V = N` and less elsewhere (part of the lobe falls below the horizon). For Blinn-Phong
+//! we use the exact factor for the same condition (F. Giesen, *Derivation of Phong and
+//! Blinn-Phong BRDF normalization factors*, 2009), not the well-known approximation
+//! `(n + 8)/(8π)`: measured with `n` from 1 to 10 000, the approximation overshoots the exact
+//! factor by up to 7.5 % (at `n ≈ 10`), so its albedo exceeds 1 at normal view; with the
+//! exact one the largest albedo over every view direction is 1 (at `V = N`).
+//!
+//! Fresnel and metals (the lesson: "never tint a dielectric's highlight; metals tint their
+//! reflection with their colour"). Schlick: `F = F₀ + (1 − F₀)(1 − L·H)⁵`, with `L·H = V·H`
+//! (symmetric, so reciprocity is kept, for Phong lobes too). A dielectric's `F₀` is grey,
+//! `((ior − 1)/(ior + 1))²` (0.04 at `ior` 1.5): with an `ior`, each specular weight is
+//! multiplied by `F` and the diffuse lobe by `1 − F`; without one, neither is (`F₀ = 1`, no
+//! Schlick). A metal has no diffuse lobe and `F₀` is its colour per channel
+//! ([`Metal::f0`](crate::Metal::f0)), always with Schlick. Since `F ≤ 1` and `1 − F ≤ 1`,
+//! `kd·max(albedo) + Σ wₖ ≤ 1` is enough for energy conservation in every case
+//! ([`Material::is_energy_conserving`](crate::Material::is_energy_conserving)).
+//!
+//! How the kernel uses this: the per-material constants are a [`Params`], computed once per
+//! frame by [`Params::of`] (in prepare, in `f32`; normalization factors and `F₀` folded in).
+//! Per light, [`terms`] returns the diffuse factor and the specular colour, times `cos θ_i`
+//! for the normalized models; the kernel accumulates `I·terms` and multiplies by
+//! `kd·albedo` and `ks` once per pixel. For the classic models [`terms`] is exactly the
+//! arithmetic the kernel has always done, so their output has not changed by a bit. [`value`]
+//! is `f` itself, from the same [`terms`], for the law tests. The fixed-point path mirrors
+//! these formulas in integers (see `src/fixed/mod.rs`), and the `f64`
+//! [`reference`](crate::reference) implements them again, independently.
 
+use crate::float_math::pow_clamped;
 use crate::lane::Lane;
+use crate::scene::{Material, Model, Surface, MORE_LOBES};
 use crate::vec3::Vec3;
+use core::ops::{Add, Div, Mul, Neg, Sub};
+
+/// Specular lobes per material: lobe 0 (`ks`, `shininess`) and [`MORE_LOBES`] more.
+pub const LOBES: usize = 1 + MORE_LOBES;
+
+/// The numbers the models are written in: the kernel's lanes ([`Lane`] types) and `f64`.
+///
+/// Every [`Lane`] type is a `Real` with the lane's own exact operations, and with the
+/// kernel's [`pow_clamped`]; `f64` uses `libm`'s correctly rounded `sqrt` and `pow`, which is
+/// what lets the law tests check reciprocity to `1e-6` even at `n = 10⁴`.
+pub trait Real:
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// A per-lane boolean.
+    type Mask: Copy;
+    /// Every lane set to `v` (exact for `f64`).
+    fn splat(v: f32) -> Self;
+    /// π in this type's precision.
+    fn pi() -> Self;
+    /// Correctly rounded square root.
+    fn sqrt(self) -> Self;
+    /// Per-lane `self < rhs`.
+    fn lt(self, rhs: Self) -> Self::Mask;
+    /// Per-lane choice.
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    /// True if any lane of `mask` is set.
+    fn any(mask: Self::Mask) -> bool;
+    /// `max(0, x)^n` for `n > 0`, `x` clamped to at most 1: the lobe's power.
+    fn pow_clamped(x: Self, n: Self) -> Self;
+    /// Per-lane maximum (`if self < rhs { rhs } else { self }`).
+    #[inline(always)]
+    fn max(self, rhs: Self) -> Self {
+        Self::select(self.lt(rhs), rhs, self)
+    }
+}
+
+impl<T: Lane> Real for T {
+    type Mask = <T as Lane>::Mask;
+    #[inline(always)]
+    fn splat(v: f32) -> Self {
+        <T as Lane>::splat(v)
+    }
+    #[inline(always)]
+    fn pi() -> Self {
+        <T as Lane>::splat(core::f32::consts::PI)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        <T as Lane>::sqrt(self)
+    }
+    #[inline(always)]
+    fn lt(self, rhs: Self) -> Self::Mask {
+        <T as Lane>::lt(self, rhs)
+    }
+    #[inline(always)]
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self {
+        <T as Lane>::select(mask, if_true, if_false)
+    }
+    #[inline(always)]
+    fn any(mask: Self::Mask) -> bool {
+        <T as Lane>::any(mask)
+    }
+    #[inline(always)]
+    fn pow_clamped(x: Self, n: Self) -> Self {
+        pow_clamped(x, n)
+    }
+    #[inline(always)]
+    fn max(self, rhs: Self) -> Self {
+        <T as Lane>::max(self, rhs)
+    }
+}
+
+impl Real for f64 {
+    type Mask = bool;
+    fn splat(v: f32) -> Self {
+        v as f64
+    }
+    fn pi() -> Self {
+        core::f64::consts::PI
+    }
+    fn sqrt(self) -> Self {
+        libm::sqrt(self)
+    }
+    fn lt(self, rhs: Self) -> bool {
+        self < rhs
+    }
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask {
+            if_true
+        } else {
+            if_false
+        }
+    }
+    fn any(mask: bool) -> bool {
+        mask
+    }
+    fn pow_clamped(x: Self, n: Self) -> Self {
+        if x > 0.0 {
+            libm::pow(x.min(1.0), n)
+        } else {
+            0.0
+        }
+    }
+}
+
+/// The scalar types per-material constants are computed in: `f32` (prepare) and `f64`
+/// (tests). They add the one function only [`Params::of`] needs.
+pub trait ScalarReal: Real<Mask = bool> {
+    /// `2^x`.
+    fn exp2(self) -> Self;
+}
+
+impl ScalarReal for f32 {
+    fn exp2(self) -> Self {
+        libm::exp2f(self)
+    }
+}
+
+impl ScalarReal for f64 {
+    fn exp2(self) -> Self {
+        libm::exp2(self)
+    }
+}
+
+#[inline(always)]
+fn dot<T: Real>(a: Vec3<T>, b: Vec3<T>) -> T {
+    a.x * b.x + a.y * b.y + a.z * b.z
+}
+
+#[inline(always)]
+fn add<T: Real>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
+    Vec3::new(a.x + b.x, a.y + b.y, a.z + b.z)
+}
+
+#[inline(always)]
+fn scale<T: Real>(a: Vec3<T>, s: T) -> Vec3<T> {
+    Vec3::new(a.x * s, a.y * s, a.z * s)
+}
+
+#[inline(always)]
+fn select3<T: Real>(m: T::Mask, a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
+    Vec3::new(
+        T::select(m, a.x, b.x),
+        T::select(m, a.y, b.y),
+        T::select(m, a.z, b.z),
+    )
+}
+
+/// `R·V` with `R` the light's travel direction `−L` mirrored about `N`: `D − 2(N·D)N`,
+/// `D = −L`. Unclamped. Symmetric in `L` and `V` in exact arithmetic
+/// (`2(N·L)(N·V) − L·V`).
+#[inline(always)]
+pub fn phong_cosine<T: Real>(n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> T {
+    let travel = Vec3::new(-to_light.x, -to_light.y, -to_light.z);
+    let k = T::splat(2.0) * dot(n, travel);
+    let mirrored = Vec3::new(travel.x - n.x * k, travel.y - n.y * k, travel.z - n.z * k);
+    dot(mirrored, view)
+}
+
+/// `1/|L + V|`, or 0 where `L + V` is zero.
+#[inline(always)]
+fn inverse_half_length<T: Real>(h: Vec3<T>) -> T {
+    let zero = T::splat(0.0);
+    let h2 = dot(h, h);
+    T::select(zero.lt(h2), T::splat(1.0) / h2.sqrt(), zero)
+}
 
 /// The cosine the specular lobe raises to the power `n`: `R·V` (Phong) or `N·H`
 /// (Blinn-Phong, on lanes where `blinn` is set). Unclamped; the caller clamps at zero.
@@ -23,16 +232,324 @@ use crate::vec3::Vec3;
 /// `n` is the unit normal, `to_light` the unit vector toward the light (`L`), `view` the unit
 /// vector toward the eye (`V`). If `L + V` is zero, `N·H` is taken as 0.
 #[inline(always)]
-pub fn specular_cosine<T: Lane>(n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>, blinn: T::Mask) -> T {
-    let travel = -to_light;
-    let mirrored = travel - n * (T::splat(2.0) * n.dot(travel));
-    let r_dot_v = mirrored.dot(view);
+pub fn specular_cosine<T: Real>(n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>, blinn: T::Mask) -> T {
+    let r_dot_v = phong_cosine(n, to_light, view);
     if !T::any(blinn) {
         return r_dot_v;
     }
+    let h = add(to_light, view);
+    let inv_len = inverse_half_length(h);
+    T::select(blinn, dot(n, h) * inv_len, r_dot_v)
+}
+
+/// `L·H = V·H`, the cosine Fresnel's factor depends on (0 where `L + V` is zero).
+#[inline(always)]
+pub fn half_angle_cosine<T: Real>(to_light: Vec3<T>, view: Vec3<T>) -> T {
+    let h = add(to_light, view);
+    dot(to_light, h) * inverse_half_length(h)
+}
+
+/// Schlick's weight `(1 − max(0, c))⁵`, by multiplications: `F = F₀ + (1 − F₀)·weight`.
+#[inline(always)]
+pub fn schlick_weight<T: Real>(cos_d: T) -> T {
+    let one = T::splat(1.0);
     let zero = T::splat(0.0);
-    let h = to_light + view;
-    let h2 = h.dot(h);
-    let inv_len = T::select(zero.lt(h2), T::splat(1.0) / h2.sqrt(), zero);
-    T::select(blinn, n.dot(h) * inv_len, r_dot_v)
+    // 1 − c, clamped to [0, 1]: c may round slightly outside [0, 1].
+    let m = (one - cos_d).max(zero);
+    let m = T::select(m.lt(one), m, one);
+    let m2 = m * m;
+    m2 * m2 * m
+}
+
+/// Schlick's `F₀` of a dielectric with index of refraction `ior` (against air):
+/// `((ior − 1)/(ior + 1))²`.
+#[inline(always)]
+pub fn dielectric_f0<T: Real>(ior: T) -> T {
+    let one = T::splat(1.0);
+    let r = (ior - one) / (ior + one);
+    r * r
+}
+
+/// Normalized Phong's factor `(n + 2)/(2π)`.
+#[inline(always)]
+pub fn phong_normalization<T: Real>(n: T) -> T {
+    (n + T::splat(2.0)) / (T::splat(2.0) * T::pi())
+}
+
+/// Normalized Blinn-Phong's exact factor `(n + 2)(n + 4) / (8π(2^(−n/2) + n))`: the
+/// directional albedo of the lobe is 1 at `V = N`, its largest value.
+#[inline(always)]
+pub fn blinn_phong_normalization<T: ScalarReal>(n: T) -> T {
+    let num = (n + T::splat(2.0)) * (n + T::splat(4.0));
+    num / (T::splat(8.0) * T::pi() * ((-n / T::splat(2.0)).exp2() + n))
+}
+
+/// A material's constants, per lane: everything [`terms`] needs, normalizations folded in.
+///
+/// Flags are numbers (1 set, 0 clear) so that a packet's lanes can hold different materials;
+/// [`Params::masks`] turns them into lane masks once per packet.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Params<T> {
+    /// `kd·albedo` (classic), `kd·albedo/π` (normalized, Lambert), 0 (metals).
+    pub kd_albedo: Vec3<T>,
+    /// `ks` (classic); 1 for the normalized models, whose weights are in `weight`.
+    pub ks: T,
+    /// Exponent of lobe 0 (and of the classic models' one lobe).
+    pub shininess: T,
+    /// 1: the lobe cosine is `N·H` (Blinn-Phong); 0: `R·V` (Phong).
+    pub blinn: T,
+    /// 1: a normalized model (or Lambert); 0: classic.
+    pub normalized: T,
+    /// Normalized models: `wₖ·cₖ`, each lobe's weight times its normalization factor.
+    pub weight: [T; LOBES],
+    /// Exponents of lobes 1 and 2.
+    pub more_shininess: [T; MORE_LOBES],
+    /// `F₀` per channel: 1 (dielectric without `ior`), grey (with), the metal's colour.
+    pub f0: Vec3<T>,
+    /// 1: Schlick's factor applies (dielectric with `ior`, metal).
+    pub schlick: T,
+    /// 1: the diffuse lobe is multiplied by `1 − F` (dielectric with `ior`).
+    pub diffuse_loss: T,
+}
+
+/// The flags of [`Params`] as lane masks.
+#[derive(Clone, Copy, Debug)]
+pub struct Masks<T: Real> {
+    /// `N·H` lobes.
+    pub blinn: T::Mask,
+    /// Normalized models.
+    pub normalized: T::Mask,
+    /// Schlick's factor.
+    pub schlick: T::Mask,
+}
+
+/// Which optional parts of [`terms`] a packet needs: each is skipped as a whole when no lane
+/// needs it, which changes no bit (a skipped part's contribution is exactly zero or one on
+/// the lanes that do not need it).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Present {
+    /// Some lane has a normalized model.
+    pub normalized: bool,
+    /// Some lane has Schlick's factor.
+    pub schlick: bool,
+    /// Some lane has lobe 1 or 2.
+    pub more_lobes: bool,
+}
+
+impl Present {
+    /// Everything: what [`value`] uses.
+    pub const ALL: Present = Present {
+        normalized: true,
+        schlick: true,
+        more_lobes: true,
+    };
+}
+
+impl<T: Real> Params<T> {
+    /// Every lane holds `p`.
+    #[inline(always)]
+    pub fn splat(p: &Params<f32>) -> Self {
+        let s = T::splat;
+        Params {
+            kd_albedo: Vec3::new(s(p.kd_albedo.x), s(p.kd_albedo.y), s(p.kd_albedo.z)),
+            ks: s(p.ks),
+            shininess: s(p.shininess),
+            blinn: s(p.blinn),
+            normalized: s(p.normalized),
+            weight: p.weight.map(s),
+            more_shininess: p.more_shininess.map(s),
+            f0: Vec3::new(s(p.f0.x), s(p.f0.y), s(p.f0.z)),
+            schlick: s(p.schlick),
+            diffuse_loss: s(p.diffuse_loss),
+        }
+    }
+
+    /// `a` on lanes where `mask` is set, else `b`: only the normalized models' fields
+    /// (`weight`, `more_shininess`, `f0`, `schlick`, `diffuse_loss`, `normalized`).
+    #[inline(always)]
+    pub fn select_normalized(mask: T::Mask, a: &Params<T>, b: &mut Params<T>) {
+        for (w, v) in b.weight.iter_mut().zip(a.weight) {
+            *w = T::select(mask, v, *w);
+        }
+        for (w, v) in b.more_shininess.iter_mut().zip(a.more_shininess) {
+            *w = T::select(mask, v, *w);
+        }
+        b.f0 = select3(mask, a.f0, b.f0);
+        b.schlick = T::select(mask, a.schlick, b.schlick);
+        b.diffuse_loss = T::select(mask, a.diffuse_loss, b.diffuse_loss);
+        b.normalized = T::select(mask, a.normalized, b.normalized);
+    }
+
+    /// The flags as lane masks.
+    #[inline(always)]
+    pub fn masks(&self) -> Masks<T> {
+        let zero = T::splat(0.0);
+        Masks {
+            blinn: zero.lt(self.blinn),
+            normalized: zero.lt(self.normalized),
+            schlick: zero.lt(self.schlick),
+        }
+    }
+}
+
+impl<T: ScalarReal> Params<T> {
+    /// The constants of `m`: normalization factors, `F₀`, and the diffuse scale, computed
+    /// once (in prepare, or in `f64` by the tests).
+    pub fn of(m: &Material) -> Self {
+        let s = T::splat;
+        let (zero, one) = (s(0.0), s(1.0));
+        let a = m.albedo;
+        let kd = s(m.kd);
+        let kd_albedo = Vec3::new(s(a.r) * kd, s(a.g) * kd, s(a.b) * kd);
+        let classic = Params {
+            kd_albedo,
+            ks: s(m.ks),
+            shininess: s(m.shininess),
+            blinn: if m.model == Model::BlinnPhong {
+                one
+            } else {
+                zero
+            },
+            normalized: zero,
+            weight: [zero; LOBES],
+            more_shininess: [one; MORE_LOBES],
+            f0: Vec3::new(one, one, one),
+            schlick: zero,
+            diffuse_loss: zero,
+        };
+        let diffuse = scale(kd_albedo, one / T::pi());
+        let (spec, blinn) = match m.model {
+            Model::NormalizedPhong(spec) => (spec, false),
+            Model::NormalizedBlinnPhong(spec) => (spec, true),
+            Model::Lambert => {
+                return Params {
+                    kd_albedo: diffuse,
+                    ks: one,
+                    normalized: one,
+                    ..classic
+                };
+            }
+            _ => return classic,
+        };
+        let norm = |n: T| {
+            if blinn {
+                blinn_phong_normalization(n)
+            } else {
+                phong_normalization(n)
+            }
+        };
+        let mut weight = [s(m.ks) * norm(s(m.shininess)), zero, zero];
+        for (w, l) in weight[1..].iter_mut().zip(spec.more_lobes) {
+            *w = s(l.weight) * norm(s(l.shininess));
+        }
+        let (kd_albedo, f0, schlick, diffuse_loss) = match spec.surface {
+            Surface::Dielectric { ior: None } => (diffuse, Vec3::new(one, one, one), zero, zero),
+            Surface::Dielectric { ior: Some(ior) } => {
+                let f = dielectric_f0(s(ior));
+                (diffuse, Vec3::new(f, f, f), one, one)
+            }
+            Surface::Metal(metal) => {
+                let c = metal.f0();
+                let black = Vec3::new(zero, zero, zero);
+                (black, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
+            }
+        };
+        Params {
+            kd_albedo,
+            ks: one,
+            shininess: s(m.shininess),
+            blinn: if blinn { one } else { zero },
+            normalized: one,
+            weight,
+            more_shininess: spec.more_lobes.map(|l| s(l.shininess)),
+            f0,
+            schlick,
+            diffuse_loss,
+        }
+    }
+}
+
+/// What one light adds, per unit of arriving light: the pixel gets
+/// `kd_albedo ⊙ Σ I·diffuse + ks·Σ I ⊙ specular`.
+#[derive(Clone, Copy, Debug)]
+pub struct Terms<T> {
+    /// Classic: `max(0, N·L)`. Normalized: `max(0, N·L)·(1 − F)` (dielectric with `ior`) or
+    /// `max(0, N·L)`.
+    pub diffuse: T,
+    /// Classic: the lobe `max(0, c)^n` in every channel. Normalized:
+    /// `max(0, N·L)·F·Σ wₖ·cₖ·max(0, c)^nₖ` per channel.
+    pub specular: Vec3<T>,
+}
+
+/// The diffuse and specular terms of one light for the material constants `p`, at every
+/// lane: the models of the table in the module docs, times `cos θ_i` for the normalized
+/// ones. `present` says which optional parts to compute (see [`Present`]).
+#[inline(always)]
+pub fn terms<T: Real>(
+    p: &Params<T>,
+    masks: &Masks<T>,
+    present: Present,
+    n: Vec3<T>,
+    to_light: Vec3<T>,
+    view: Vec3<T>,
+) -> Terms<T> {
+    let zero = T::splat(0.0);
+    let n_dot_l = dot(n, to_light).max(zero);
+    let cosine = specular_cosine(n, to_light, view, masks.blinn);
+    // pow_clamped is exactly 0 where the cosine is not positive, so a packet with no
+    // positive lane can skip it without changing a bit.
+    let positive = T::any(zero.lt(cosine));
+    let lobe = if positive {
+        T::pow_clamped(cosine, p.shininess)
+    } else {
+        zero
+    };
+    let classic = Terms {
+        diffuse: n_dot_l,
+        specular: Vec3::new(lobe, lobe, lobe),
+    };
+    if !present.normalized {
+        return classic;
+    }
+    let mut sum = p.weight[0] * lobe;
+    if present.more_lobes && positive {
+        for (w, e) in p.weight[1..].iter().zip(p.more_shininess) {
+            sum = sum + *w * T::pow_clamped(cosine, e);
+        }
+    }
+    let one = T::splat(1.0);
+    let (f, diffuse_scale) = if present.schlick {
+        let w = schlick_weight(half_angle_cosine(to_light, view));
+        let w = T::select(masks.schlick, w, zero);
+        let f = Vec3::new(
+            p.f0.x + (one - p.f0.x) * w,
+            p.f0.y + (one - p.f0.y) * w,
+            p.f0.z + (one - p.f0.z) * w,
+        );
+        (f, one - p.diffuse_loss * f.x)
+    } else {
+        (p.f0, one)
+    };
+    let sum = sum * n_dot_l;
+    Terms {
+        diffuse: T::select(masks.normalized, n_dot_l * diffuse_scale, classic.diffuse),
+        specular: select3(masks.normalized, scale(f, sum), classic.specular),
+    }
+}
+
+/// The BRDF `f(ω_i, ω_o)` itself, per channel: [`terms`] with everything present, combined
+/// as the kernel combines it, divided by `cos θ_i`. For directions above the surface
+/// (`N·L > 0`, `N·V > 0`); elsewhere it is not defined here.
+pub fn value<T: Real>(p: &Params<T>, n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> Vec3<T> {
+    let t = terms(p, &p.masks(), Present::ALL, n, to_light, view);
+    let cos_i = dot(n, to_light);
+    let c = add(
+        Vec3::new(
+            p.kd_albedo.x * t.diffuse,
+            p.kd_albedo.y * t.diffuse,
+            p.kd_albedo.z * t.diffuse,
+        ),
+        scale(t.specular, p.ks),
+    );
+    scale(c, T::splat(1.0) / cos_i)
 }

@@ -11,13 +11,19 @@
 //! | `diffuse` | `Σ vis·I·max(0, N·L)`, times `kd·albedo` at the end |
 //! | `specular` | `Σ vis·I·max(0, c)^n`, `c = R·V` (Phong) or `N·H` (Blinn-Phong), times `ks` |
 //!
+//! (`diffuse` and `specular` are [`brdf::terms`]: for the normalized models the diffuse term
+//! carries `1 − F` and the specular term `max(0, N·L)·F·Σ wₖ·cₖ·max(0, c)^nₖ`, with
+//! `kd·albedo/π` and `ks = 1` applied at the end; see [`crate::brdf`].)
+//!
 //! Misses get the background. Decisions are lane masks, never per-lane branches, so a lane's
 //! result depends only on its own pixel: which pixels share a packet, and how wide the packet
 //! is, cannot change any bit. The only branches are on whole packets (skip a sphere's shadow
 //! test, skip lighting when no lane hit) and those skip work whose result would be discarded.
+//! The normalized models' extra work (their constants, more lobes, Fresnel) is such a branch
+//! too: a packet in which no lane shows a normalized material does exactly the classic
+//! models' arithmetic, as before they existed.
 
-use crate::brdf;
-use crate::float_math::pow_clamped;
+use crate::brdf::{self, Params, Present};
 use crate::lane::Lane;
 use crate::prepare::{FloatPath, Prepared, PreparedLight, MAX_ARRIVING};
 use crate::vec3::Vec3;
@@ -80,6 +86,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let mut ks = zero;
         let mut shininess = one;
         let mut blinn = zero;
+        let mut present = Present::default();
         for &k in candidates {
             let Some(s) = self.spheres.get(k as usize) else {
                 continue;
@@ -94,10 +101,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             id = W::Lane::select(hit, W::Lane::splat(k as f32), id);
             center = V::select(hit, V::splat(s.center), center);
             inv_r = W::Lane::select(hit, W::Lane::splat(s.inv_radius), inv_r);
-            kd_albedo = V::select(hit, V::splat(s.kd_albedo), kd_albedo);
-            ks = W::Lane::select(hit, W::Lane::splat(s.ks), ks);
-            shininess = W::Lane::select(hit, W::Lane::splat(s.shininess), shininess);
-            blinn = W::Lane::select(hit, W::Lane::splat(s.blinn), blinn);
+            let m = &s.params;
+            kd_albedo = V::select(hit, V::splat(m.kd_albedo), kd_albedo);
+            ks = W::Lane::select(hit, W::Lane::splat(m.ks), ks);
+            shininess = W::Lane::select(hit, W::Lane::splat(m.shininess), shininess);
+            blinn = W::Lane::select(hit, W::Lane::splat(m.blinn), blinn);
+            // Conservative: a nearer sphere may still take these lanes.
+            present.normalized |= s.normalized;
         }
         let background = V::splat(Vec3::new(
             self.background.r,
@@ -119,7 +129,97 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let n = (p - center) * inv_r;
         let view = -d;
         let shadow_origin = p + n * eps;
-        let is_blinn = zero.lt(blinn);
+        let mut params = Params {
+            kd_albedo,
+            ks,
+            shininess,
+            blinn,
+            ..Params::splat(&NO_MATERIAL)
+        };
+        if present.normalized {
+            // The normalized models' constants, only in packets that show one: lane by lane
+            // from the sphere it hit.
+            for &k in candidates {
+                let Some(s) = self.spheres.get(k as usize) else {
+                    continue;
+                };
+                let kf = W::Lane::splat(k as f32);
+                let here = W::Lane::and(id.le(kf), kf.le(id));
+                if s.normalized && W::Lane::any(here) {
+                    Params::select_normalized(here, &Params::splat(&s.params), &mut params);
+                    present.schlick |= s.schlick;
+                    present.more_lobes |= s.more_lobes;
+                }
+            }
+        }
+        let surface = Surface {
+            p,
+            n,
+            view,
+            shadow_origin,
+            any_hit,
+        };
+        let (diffuse, specular) = if present.normalized {
+            self.lights::<true>(
+                &surface,
+                &params,
+                present,
+                record_hits,
+                &mut packet.shadowed,
+            )
+        } else {
+            self.lights::<false>(
+                &surface,
+                &params,
+                present,
+                record_hits,
+                &mut packet.shadowed,
+            )
+        };
+
+        let kd_albedo = params.kd_albedo;
+        let shaded = V::new(
+            kd_albedo.x * diffuse.x,
+            kd_albedo.y * diffuse.y,
+            kd_albedo.z * diffuse.z,
+        ) + specular * params.ks;
+        // kd·albedo (up to 1e12) times arriving light (up to 1e30 per light) can exceed
+        // f32::MAX: saturate there, so the output is finite. Every term is ≥ 0 and finite,
+        // so the sum is never NaN, and `min` leaves every finite value's bits unchanged.
+        let cap = W::Lane::splat(f32::MAX);
+        let shaded = V::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap));
+        packet.color = V::select(any_hit, shaded, background);
+        packet
+    }
+
+    /// The `lights`, `shadow`, `diffuse` and `specular` stages over every light: the sums
+    /// `Σ vis·I·diffuse` and `Σ vis·I ⊙ specular`. `NORMALIZED` is whether the packet shows a
+    /// normalized material: without one, this is the classic models' arithmetic alone.
+    #[inline(always)]
+    fn lights<const NORMALIZED: bool>(
+        &self,
+        surface: &Surface<W::Lane>,
+        params: &Params<W::Lane>,
+        present: Present,
+        record_hits: bool,
+        shadowed: &mut [u32; 8],
+    ) -> (Vec3<W::Lane>, Vec3<W::Lane>) {
+        type V<T> = Vec3<T>;
+        let one = W::Lane::splat(1.0);
+        let zero = W::Lane::splat(0.0);
+        let eps = W::Lane::splat(self.epsilon);
+        let Surface {
+            p,
+            n,
+            view,
+            shadow_origin,
+            any_hit,
+        } = *surface;
+        let present = Present {
+            normalized: NORMALIZED,
+            ..present
+        };
+        let masks = params.masks();
 
         let mut diffuse = V::<W::Lane>::splat(Vec3::default());
         let mut specular = V::<W::Lane>::splat(Vec3::default());
@@ -166,7 +266,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             let visible = W::Lane::and_not(any_hit, blocked);
             if record_hits && light_index < 32 {
                 let bits = W::Lane::bitmask(W::Lane::and(any_hit, blocked));
-                for (lane, word) in packet.shadowed.iter_mut().enumerate() {
+                for (lane, word) in shadowed.iter_mut().enumerate() {
                     *word |= ((bits >> lane) & 1) << light_index;
                 }
             }
@@ -175,34 +275,51 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             }
 
             // diffuse and specular, from the brdf module's definitions.
-            let n_dot_l = n.dot(to_light).max(zero);
-            let cosine = brdf::specular_cosine(n, to_light, view, is_blinn);
-            // pow_clamped is exactly 0 where the cosine is not positive, so a packet with no
-            // positive lane can skip it without changing a bit.
-            let lobe = if W::Lane::any(zero.lt(cosine)) {
-                pow_clamped(cosine, shininess)
-            } else {
-                zero
-            };
+            let t = brdf::terms(params, &masks, present, n, to_light, view);
             let lit = W::Lane::select(visible, one, zero);
-            diffuse = diffuse + arriving * (n_dot_l * lit);
-            specular = specular + arriving * (lobe * lit);
+            diffuse = diffuse + arriving * (t.diffuse * lit);
+            specular = if NORMALIZED {
+                let s = t.specular;
+                specular
+                    + V::new(
+                        arriving.x * (s.x * lit),
+                        arriving.y * (s.y * lit),
+                        arriving.z * (s.z * lit),
+                    )
+            } else {
+                // Classic lanes only: the lobe is the same in every channel.
+                specular + arriving * (t.specular.x * lit)
+            };
         }
 
-        let shaded = V::new(
-            kd_albedo.x * diffuse.x,
-            kd_albedo.y * diffuse.y,
-            kd_albedo.z * diffuse.z,
-        ) + specular * ks;
-        // kd·albedo (up to 1e12) times arriving light (up to 1e30 per light) can exceed
-        // f32::MAX: saturate there, so the output is finite. Every term is ≥ 0 and finite,
-        // so the sum is never NaN, and `min` leaves every finite value's bits unchanged.
-        let cap = W::Lane::splat(f32::MAX);
-        let shaded = V::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap));
-        packet.color = V::select(any_hit, shaded, background);
-        packet
+        (diffuse, specular)
     }
 }
+
+/// A packet's surface points: what the lighting stages read.
+#[derive(Clone, Copy)]
+struct Surface<T: Lane> {
+    p: Vec3<T>,
+    n: Vec3<T>,
+    view: Vec3<T>,
+    shadow_origin: Vec3<T>,
+    any_hit: T::Mask,
+}
+
+/// The constants of lanes that hit nothing: no light is reflected (`kd·albedo = 0`,
+/// `ks = 0`), exponent 1, classic.
+const NO_MATERIAL: Params<f32> = Params {
+    kd_albedo: Vec3::new(0.0, 0.0, 0.0),
+    ks: 0.0,
+    shininess: 1.0,
+    blinn: 0.0,
+    normalized: 0.0,
+    weight: [0.0; brdf::LOBES],
+    more_shininess: [1.0; crate::scene::MORE_LOBES],
+    f0: Vec3::new(1.0, 1.0, 1.0),
+    schlick: 0.0,
+    diffuse_loss: 0.0,
+};
 
 /// Nearest intersection with `t > ε` of the ray `origin + t·dir` (`dir` unit) with the sphere
 /// at offset `oc = origin − center`: `(t, hit)`.

@@ -68,10 +68,11 @@ pub mod vec3;
 pub use fixed::PreparedFixed;
 pub use pixel::{FixedShade, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
 pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
-pub use presets::{exponent_series, EXPONENT_SERIES_SIZE};
+pub use presets::{exponent_series, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE};
 pub use render::{Render, RenderError};
 pub use scene::{
-    Camera, Item, ItemKind, Light, Material, Model, Problem, Scene, SceneError, Sphere,
+    Camera, Item, ItemKind, Light, Lobe, Material, Metal, Model, Problem, Scene, SceneError,
+    Specular, Sphere, Surface, MORE_LOBES,
 };
 pub use spans::Span;
 pub use vec3::Vec3;

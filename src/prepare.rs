@@ -2,17 +2,19 @@
 //!
 //! [`Prepared::new`] turns a validated [`Scene`] and an image size into the numbers the row
 //! driver and the kernel read: the camera basis and pixel-to-plane scales, each sphere's offset
-//! from the eye and `1/r` (so normals need no square root), each material's `kd·albedo`, each
-//! light's arriving colour. Nothing below this step allocates, panics or recomputes a per-frame
+//! from the eye and `1/r` (so normals need no square root), each material's constants
+//! ([`Params::of`]: `kd·albedo`, normalization factors, Fresnel's `F₀`), each light's arriving
+//! colour. Nothing below this step allocates, panics or recomputes a per-frame
 //! value per row or per pixel.
 //!
 //! The lane width is a type parameter ([`Scalar`], [`Simd4`], [`Simd8`]) and changes only how
 //! many pixels one kernel call shades: the prepared numbers are the same at every width, which
 //! is half of why the paths agree bit for bit (the other half is [`crate::lane`]).
 
+use crate::brdf::Params;
 use crate::lane::Lane;
 use crate::pixel::LinearRgb;
-use crate::scene::{Light, Model, Scene};
+use crate::scene::{Light, Scene};
 use crate::vec3::Vec3;
 use crate::RenderError;
 use core::marker::PhantomData;
@@ -67,12 +69,16 @@ pub(crate) struct PreparedSphere {
     pub eye_offset: Vec3,
     pub radius_sq: f32,
     pub inv_radius: f32,
-    /// `kd · albedo`, per channel.
-    pub kd_albedo: Vec3,
-    pub ks: f32,
-    pub shininess: f32,
-    /// 1.0 for Blinn-Phong, 0.0 for Phong (selected per lane).
-    pub blinn: f32,
+    /// The material's constants ([`Params::of`]): `kd·albedo`, `ks`, the exponents, the
+    /// normalization factors and `F₀` of the normalized models.
+    pub params: Params<f32>,
+    /// A normalized model (or Lambert): the kernel selects its constants per lane only
+    /// for such spheres, and computes their terms only in packets that show one.
+    pub normalized: bool,
+    /// Schlick's factor applies.
+    pub schlick: bool,
+    /// Lobe 1 or 2 has a weight.
+    pub more_lobes: bool,
 }
 
 /// A light's per-frame constants.
@@ -137,20 +143,16 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 
         let mut spheres = heapless::Vec::new();
         for s in scene.spheres() {
-            let m = &s.material;
+            let params = Params::<f32>::of(&s.material);
             let p = PreparedSphere {
                 center: s.center,
                 eye_offset: eye - s.center,
                 radius_sq: s.radius * s.radius,
                 inv_radius: 1.0 / s.radius,
-                kd_albedo: Vec3::new(m.albedo.r, m.albedo.g, m.albedo.b).scale(m.kd),
-                ks: m.ks,
-                shininess: m.shininess,
-                blinn: if m.model == Model::BlinnPhong {
-                    1.0
-                } else {
-                    0.0
-                },
+                params,
+                normalized: params.normalized > 0.0,
+                schlick: params.schlick > 0.0,
+                more_lobes: params.weight[1..].iter().any(|&w| w > 0.0),
             };
             // Same capacity as the scene: cannot fail.
             let _ = spheres.push(p);

@@ -1,7 +1,8 @@
 //! Built-in scenes, available without a scene file (firmware has no file system).
 //!
 //! [`exponent_series`] is the lesson's scene, number for number the same as
-//! `scenes/exponent-series.toml` (the harness tests that the two agree).
+//! `scenes/exponent-series.toml` (the harness tests that the two agree); [`materials`] is
+//! the gallery of models, the same as `scenes/materials.toml`.
 
 use crate::pixel::LinearRgb;
 use crate::scene::{Camera, Light, Material, Model, Scene, SceneError, Sphere};
@@ -47,6 +48,104 @@ pub fn exponent_series() -> Result<Scene, SceneError> {
                 ks,
                 shininess: n,
                 model: Model::Phong,
+            },
+        })?;
+    }
+    Ok(scene)
+}
+
+/// The materials gallery's image size: 768 × 432.
+pub const MATERIALS_SIZE: (u32, u32) = (768, 432);
+
+/// The materials gallery: ten spheres in two rows under a white key light and a dim warm
+/// fill light, over a near-black background.
+///
+/// Top row, left to right: a red plastic (normalized Phong, dielectric: its highlight is
+/// white, not red), gold, copper and bronze (normalized Blinn-Phong metals: no diffuse lobe,
+/// the reflection tinted by the metal's `F₀`, whitening toward grazing angles), and a blue
+/// multi-lobe lacquer (one diffuse lobe and three specular lobes, `n` = 800, 60 and 8).
+/// Bottom row: the exponent series under normalized Phong, `kd = ks = 0.5` and
+/// `n` = 3, 10, 30, 100, 300: unlike the classic series, the highlight dims as it widens.
+/// Every material is energy conserving ([`Material::is_energy_conserving`]). The same
+/// numbers are in `scenes/materials.toml`.
+pub fn materials() -> Result<Scene<16, 4>, SceneError> {
+    use crate::scene::{Lobe, Metal, Specular, Surface};
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 13.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 28.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.03))?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(0.45, -0.55, -0.7),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 2.5,
+    })?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(-0.6, -0.2, -0.75),
+        color: LinearRgb::new(1.0, 0.85, 0.7),
+        intensity: 0.6,
+    })?;
+    let dielectric = Specular::default();
+    let metal = |m: Metal| Material {
+        albedo: LinearRgb::new(0.0, 0.0, 0.0),
+        kd: 0.0,
+        ks: 1.0,
+        shininess: 40.0,
+        model: Model::NormalizedBlinnPhong(Specular {
+            surface: Surface::Metal(m),
+            ..Specular::default()
+        }),
+    };
+    let top = [
+        Material {
+            albedo: LinearRgb::new(0.7, 0.1, 0.08),
+            kd: 0.7,
+            ks: 0.3,
+            shininess: 200.0,
+            model: Model::NormalizedPhong(dielectric),
+        },
+        metal(Metal::Gold),
+        metal(Metal::Copper),
+        metal(Metal::Bronze),
+        Material {
+            albedo: LinearRgb::new(0.05, 0.15, 0.5),
+            kd: 0.6,
+            ks: 0.25,
+            shininess: 800.0,
+            model: Model::NormalizedBlinnPhong(Specular {
+                surface: Surface::Dielectric { ior: None },
+                more_lobes: [
+                    Lobe {
+                        weight: 0.1,
+                        shininess: 60.0,
+                    },
+                    Lobe {
+                        weight: 0.05,
+                        shininess: 8.0,
+                    },
+                ],
+            }),
+        },
+    ];
+    for (i, material) in top.into_iter().enumerate() {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(-4.4 + 2.2 * i as f32, 1.1, 0.0),
+            radius: 0.95,
+            material,
+        })?;
+    }
+    for (i, n) in [3.0, 10.0, 30.0, 100.0, 300.0].into_iter().enumerate() {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(-4.4 + 2.2 * i as f32, -1.1, 0.0),
+            radius: 0.95,
+            material: Material {
+                albedo: LinearRgb::new(0.18, 0.18, 0.18),
+                kd: 0.5,
+                ks: 0.5,
+                shininess: n,
+                model: Model::NormalizedPhong(dielectric),
             },
         })?;
     }

@@ -9,7 +9,7 @@
 
 use crate::pixel::HitRecord;
 use crate::render::RenderError;
-use crate::scene::{Light, Model, Scene};
+use crate::scene::{Light, Material, Model, Scene, Surface};
 
 /// One pixel as the reference sees it.
 #[derive(Clone, Copy, Debug, PartialEq, Default)]
@@ -103,6 +103,63 @@ fn intersect(origin: D3, dir: D3, center: D3, radius: f64, eps: f64) -> Option<f
     }
 }
 
+/// The BRDF `f(L, V)` of a normalized model or Lambert, per channel, straight from the
+/// formulas of [`crate::brdf`]'s table: `kd·albedo/π` (times `1 − F` for a dielectric with an
+/// `ior`, nothing for a metal) plus `F·Σ wₖ·cₖ·max(0, c)^nₖ`, `c = R·V` with
+/// `cₖ = (nₖ + 2)/(2π)` or `c = N·H` with `cₖ = (nₖ + 2)(nₖ + 4)/(8π(2^(−nₖ/2) + nₖ))`, and
+/// Schlick's `F = F₀ + (1 − F₀)(1 − L·H)⁵`.
+fn normalized_brdf(m: &Material, n: D3, l: D3, v: D3) -> [f64; 3] {
+    use core::f64::consts::PI;
+    let albedo = [m.albedo.r as f64, m.albedo.g as f64, m.albedo.b as f64];
+    let diffuse = albedo.map(|a| m.kd as f64 * a / PI);
+    let (spec, blinn) = match m.model {
+        Model::NormalizedPhong(spec) => (spec, false),
+        Model::NormalizedBlinnPhong(spec) => (spec, true),
+        _ => return diffuse,
+    };
+    let h = l.add(v);
+    let h = if h.len() > 0.0 {
+        h.unit()
+    } else {
+        D3::default()
+    };
+    let cosine = if blinn {
+        n.dot(h)
+    } else {
+        // R = 2(N·L)N − L
+        n.mul(2.0 * n.dot(l)).sub(l).dot(v)
+    };
+    let mut lobes = 0.0;
+    let first = (m.ks, m.shininess);
+    let more = spec.more_lobes.map(|lobe| (lobe.weight, lobe.shininess));
+    for (w, e) in core::iter::once(first).chain(more) {
+        let (w, e) = (w as f64, e as f64);
+        let c = if blinn {
+            (e + 2.0) * (e + 4.0) / (8.0 * PI * (libm::exp2(-e / 2.0) + e))
+        } else {
+            (e + 2.0) / (2.0 * PI)
+        };
+        if cosine > 0.0 {
+            lobes += w * c * libm::pow(cosine.min(1.0), e);
+        }
+    }
+    let schlick = libm::pow(1.0 - l.dot(h).clamp(0.0, 1.0), 5.0);
+    let fresnel = |f0: f64| f0 + (1.0 - f0) * schlick;
+    match spec.surface {
+        Surface::Dielectric { ior: None } => diffuse.map(|d| d + lobes),
+        Surface::Dielectric { ior: Some(ior) } => {
+            let r = (ior as f64 - 1.0) / (ior as f64 + 1.0);
+            let f0 = r * r;
+            let f = fresnel(f0);
+            diffuse.map(|d| d * (1.0 - f) + f * lobes)
+        }
+        Surface::Metal(metal) => {
+            let c = metal.f0();
+            [c.r, c.g, c.b].map(|f0| fresnel(f0 as f64) * lobes)
+        }
+    }
+}
+
 /// The reference colour and hit record of pixel `(x, y)` of a `width × height` image.
 pub fn shade_pixel<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
@@ -147,6 +204,8 @@ pub fn shade_pixel<const S: usize, const L: usize>(
 
     let mut diffuse = [0.0f64; 3];
     let mut specular = [0.0f64; 3];
+    // Σ I·f·cos θ_i of the normalized models and Lambert.
+    let mut other = [0.0f64; 3];
     let mut shadowed = 0u32;
     for (li, light) in scene.lights().iter().enumerate() {
         let (l, arriving, t_max) = match *light {
@@ -192,6 +251,13 @@ pub fn shade_pixel<const S: usize, const L: usize>(
             continue;
         }
         let n_dot_l = n.dot(l).max(0.0);
+        if !matches!(m.model, Model::Phong | Model::BlinnPhong) {
+            let f = normalized_brdf(m, n, l, v);
+            for c in 0..3 {
+                other[c] += arriving[c] * f[c] * n_dot_l;
+            }
+            continue;
+        }
         let cosine = match m.model {
             Model::BlinnPhong => {
                 let hv = l.add(v);
@@ -221,7 +287,7 @@ pub fn shade_pixel<const S: usize, const L: usize>(
     let (kd, ks) = (m.kd as f64, m.ks as f64);
     let mut color = [0.0; 3];
     for c in 0..3 {
-        color[c] = kd * albedo[c] * diffuse[c] + ks * specular[c];
+        color[c] = kd * albedo[c] * diffuse[c] + ks * specular[c] + other[c];
     }
     RefPixel {
         color,

@@ -19,7 +19,9 @@
 //! | radius | [`MIN_RADIUS`] `≤ r ≤` [`MAX_COORDINATE`] |
 //! | colours, albedo, `kd`, `ks` | `0 ≤ v ≤` [`MAX_VALUE`] |
 //! | light intensity | `0 ≤ i ≤` [`MAX_INTENSITY`] |
-//! | shininess `n` | `0 < n ≤` [`MAX_SHININESS`] |
+//! | shininess `n` (every lobe) | `0 < n ≤` [`MAX_SHININESS`] |
+//! | lobe weights (`ks`, `lobes[k].weight`) | `0 ≤ w ≤` [`MAX_VALUE`] |
+//! | index of refraction `ior` | `1 < ior ≤` [`MAX_VALUE`]: at 1 there is no interface to reflect, and below 1 Schlick's form would need total internal reflection |
 //! | directions (camera up, distant light) | finite, not zero; only the direction is used |
 //! | vertical field of view | `0° < vfov < 180°` |
 
@@ -59,8 +61,15 @@ pub struct Camera {
     pub vfov_degrees: f32,
 }
 
-/// Which reflection model a material uses for its specular lobe.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+/// Which reflection model a material uses. The formulas are in [`crate::brdf`].
+///
+/// The two classic models are the lesson's, unchanged: empirical, not normalized, not energy
+/// conserving (their highlight does not dim as it widens). The others are normalized BRDFs:
+/// positive, reciprocal, and energy conserving when [`Material::is_energy_conserving`].
+///
+/// For every model `kd`, `albedo`, `ks` and `shininess` keep their meaning: the diffuse
+/// weight and colour, and the weight and exponent of the first specular lobe.
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
 #[non_exhaustive]
 pub enum Model {
     /// Classic Phong: `ks·I·max(0, R·V)^n`, `R` the light's travel direction mirrored about `N`.
@@ -68,20 +77,171 @@ pub enum Model {
     Phong,
     /// Classic Blinn-Phong: `ks·I·max(0, N·H)^n` with `H = normalize(L + V)`.
     BlinnPhong,
+    /// Lambert: the diffuse lobe `kd·albedo/π` alone; `ks` and `shininess` are not used.
+    Lambert,
+    /// Normalized (Lafortune–Willems modified) Phong:
+    /// `kd·albedo/π + Σ wₖ·(nₖ + 2)/(2π)·max(0, R·V)^nₖ`.
+    NormalizedPhong(Specular),
+    /// Normalized Blinn-Phong: `kd·albedo/π + Σ wₖ·(nₖ + 8)/(8π)·max(0, N·H)^nₖ`.
+    NormalizedBlinnPhong(Specular),
 }
 
-/// How a sphere's surface reflects light (the classic Phong parameters).
+impl Model {
+    /// The specular options of a normalized model (`None` for the classic models and Lambert).
+    pub fn specular(&self) -> Option<&Specular> {
+        match self {
+            Model::NormalizedPhong(s) | Model::NormalizedBlinnPhong(s) => Some(s),
+            _ => None,
+        }
+    }
+
+    /// Whether this is one of the lesson's two classic, unnormalized models.
+    pub fn is_classic(&self) -> bool {
+        matches!(self, Model::Phong | Model::BlinnPhong)
+    }
+}
+
+/// Specular options of the normalized models: what the surface is made of, and the lobes
+/// after the first.
+///
+/// ```
+/// use shadeline::{Material, Metal, Model, Specular, Surface, Lobe};
+/// let gold = Material {
+///     kd: 0.0,
+///     ks: 0.6,
+///     shininess: 400.0,
+///     model: Model::NormalizedBlinnPhong(Specular {
+///         surface: Surface::Metal(Metal::Gold),
+///         more_lobes: [Lobe { weight: 0.3, shininess: 40.0 }, Lobe::NONE],
+///     }),
+///     ..Material::default()
+/// };
+/// assert!(gold.is_energy_conserving());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Default)]
+pub struct Specular {
+    /// Dielectric (untinted highlight, optionally with Schlick Fresnel) or metal (tinted).
+    pub surface: Surface,
+    /// Specular lobes 1 and 2 (lobe 0 is the material's `ks` and `shininess`). A lobe of
+    /// weight 0 is absent: [`Lobe::NONE`]. In a scene file all lobes are written as
+    /// `lobes = [{ weight = …, shininess = … }, …]`, lobe 0 first.
+    pub more_lobes: [Lobe; MORE_LOBES],
+}
+
+/// Specular lobes a material may have besides lobe 0 (`ks`, `shininess`): three in all.
+pub const MORE_LOBES: usize = 2;
+
+/// One specular lobe: its weight and its exponent.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Lobe {
+    /// Weight, `≥ 0`; 0 means the lobe is absent.
+    pub weight: f32,
+    /// Exponent `n > 0`.
+    pub shininess: f32,
+}
+
+impl Lobe {
+    /// No lobe: weight 0 (exponent 1, so it is still a valid lobe).
+    pub const NONE: Lobe = Lobe {
+        weight: 0.0,
+        shininess: 1.0,
+    };
+}
+
+impl Default for Lobe {
+    fn default() -> Self {
+        Lobe::NONE
+    }
+}
+
+/// What a normalized material's surface is: it decides the highlight's colour.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Surface {
+    /// An insulator (plastic, paint, wood, glass): the highlight is never tinted by the
+    /// surface colour. Without `ior` the specular weights are constant; with it, they are
+    /// multiplied by Schlick's Fresnel factor `F = F₀ + (1 − F₀)(1 − L·H)⁵`,
+    /// `F₀ = ((ior − 1)/(ior + 1))²`, which rises toward grazing angles, and the diffuse lobe
+    /// by `1 − F` (light reflected at the surface does not enter it).
+    Dielectric {
+        /// Index of refraction, finite and `> 1` (`1.5` for most plastics and glass).
+        ior: Option<f32>,
+    },
+    /// A conductor: no diffuse lobe (`kd` and `albedo` are not used), and the specular lobes
+    /// are tinted per channel by Schlick's factor with the metal's coloured `F₀`.
+    Metal(Metal),
+}
+
+impl Default for Surface {
+    fn default() -> Self {
+        Surface::Dielectric { ior: None }
+    }
+}
+
+/// The metal presets, by their reflectance at normal incidence `F₀` (linear RGB).
+///
+/// | metal | `F₀` (linear RGB) | source |
+/// |---|---|---|
+/// | gold | (1.00, 0.71, 0.29) | the commonly used value (Hoffman, *Physics and Math of Shading*, SIGGRAPH 2015 course; Unreal's and Disney's tables agree within 0.01) |
+/// | copper | (0.95, 0.64, 0.54) | the same tables |
+/// | bronze | (0.80, 0.55, 0.32) | no standard table lists it; a ~88 % copper, ~12 % tin alloy is less red and less reflective than copper and browner than gold: we take copper's red lowered by the tin's grey (~0.6) share and a hue between copper's and gold's. An artistic value, not a measurement |
+///
+/// Metals use Schlick's approximation with this coloured `F₀`: the reflection is the
+/// metal's colour head-on and whitens toward grazing angles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Metal {
+    /// Gold.
+    Gold,
+    /// Copper.
+    Copper,
+    /// Bronze.
+    Bronze,
+}
+
+impl Metal {
+    /// Every preset, in the order of the table above.
+    pub const ALL: [Metal; 3] = [Metal::Gold, Metal::Copper, Metal::Bronze];
+
+    /// Reflectance at normal incidence, linear RGB, each channel in `[0, 1]`.
+    pub fn f0(self) -> LinearRgb {
+        match self {
+            Metal::Gold => LinearRgb::new(1.00, 0.71, 0.29),
+            Metal::Copper => LinearRgb::new(0.95, 0.64, 0.54),
+            Metal::Bronze => LinearRgb::new(0.80, 0.55, 0.32),
+        }
+    }
+
+    /// The name used in scene files: `"gold"`, `"copper"`, `"bronze"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Metal::Gold => "gold",
+            Metal::Copper => "copper",
+            Metal::Bronze => "bronze",
+        }
+    }
+
+    /// The preset called `name` (as in [`Metal::name`]), if there is one.
+    pub fn from_name(name: &str) -> Option<Metal> {
+        Metal::ALL.into_iter().find(|m| m.name() == name)
+    }
+}
+
+/// How a sphere's surface reflects light.
+///
+/// `Material` is `Copy` and fixed-size whatever the model: up to three specular lobes (lobe
+/// 0 here, lobes 1 and 2 in [`Specular::more_lobes`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Material {
     /// Diffuse colour, linear RGB, each component `≥ 0`.
     pub albedo: LinearRgb,
     /// Weight of the diffuse term, `≥ 0`.
     pub kd: f32,
-    /// Weight of the specular term, `≥ 0`. The specular term is never tinted by `albedo`.
+    /// Weight of the (first) specular lobe, `≥ 0`. A dielectric's highlight is never tinted
+    /// by `albedo`.
     pub ks: f32,
-    /// Specular exponent `n > 0`: larger is a smaller, tighter highlight.
+    /// Specular exponent `n > 0` of the first lobe: larger is a smaller, tighter highlight.
     pub shininess: f32,
-    /// The specular model.
+    /// The reflection model.
     pub model: Model,
 }
 
@@ -155,6 +315,8 @@ pub enum Problem {
     TooLarge,
     /// Positive, but smaller than the accepted range (see the module docs).
     TooSmall,
+    /// Must be greater than 1 (an index of refraction).
+    NotAboveOne,
     /// A direction of zero length.
     ZeroLength,
     /// The camera looks at its own position.
@@ -218,6 +380,7 @@ impl fmt::Display for Problem {
             Problem::Negative => "must not be negative",
             Problem::TooLarge => "is larger than the accepted range",
             Problem::TooSmall => "is smaller than the accepted range",
+            Problem::NotAboveOne => "must be greater than 1",
             Problem::ZeroLength => "must not be a zero-length vector",
             Problem::LookAtEqualsPosition => "must differ from the camera position",
             Problem::UpParallelToView => "must not be parallel to the view direction",
@@ -259,8 +422,9 @@ impl core::error::Error for SceneError {}
 fn limit_of(field: &str) -> f32 {
     match field {
         "intensity" => MAX_INTENSITY,
-        "shininess" => MAX_SHININESS,
-        "albedo" | "color" | "kd" | "ks" | "background" => MAX_VALUE,
+        "shininess" | "lobes[1].shininess" | "lobes[2].shininess" => MAX_SHININESS,
+        "albedo" | "color" | "kd" | "ks" | "background" | "ior" => MAX_VALUE,
+        "lobes[1].weight" | "lobes[2].weight" => MAX_VALUE,
         _ => MAX_COORDINATE,
     }
 }
@@ -351,6 +515,12 @@ impl Camera {
     }
 }
 
+/// The field names of lobes 1 and 2, as a scene file spells them.
+const LOBE_FIELDS: [(&str, &str); MORE_LOBES] = [
+    ("lobes[1].weight", "lobes[1].shininess"),
+    ("lobes[2].weight", "lobes[2].shininess"),
+];
+
 impl Material {
     fn check(&self, item: Item) -> Result<(), SceneError> {
         let c = Check { item };
@@ -358,7 +528,55 @@ impl Material {
         c.non_negative("kd", &[self.kd], MAX_VALUE)?;
         c.non_negative("ks", &[self.ks], MAX_VALUE)?;
         c.positive("shininess", self.shininess, MAX_SHININESS)?;
+        if let Some(spec) = self.model.specular() {
+            for (lobe, (weight, shininess)) in spec.more_lobes.iter().zip(LOBE_FIELDS) {
+                c.non_negative(weight, &[lobe.weight], MAX_VALUE)?;
+                c.positive(shininess, lobe.shininess, MAX_SHININESS)?;
+            }
+            if let Surface::Dielectric { ior: Some(ior) } = spec.surface {
+                c.finite("ior", &[ior])?;
+                if ior <= 1.0 {
+                    return Err(c.err("ior", Problem::NotAboveOne));
+                }
+                if ior > MAX_VALUE {
+                    return Err(c.err("ior", Problem::TooLarge));
+                }
+            }
+        }
         Ok(())
+    }
+
+    /// Whether this material cannot reflect more light than it receives, by construction:
+    /// a normalized model (or Lambert) whose diffuse weight times its brightest albedo
+    /// channel plus the sum of its specular weights is at most 1 (for a metal, which has no
+    /// diffuse lobe, the specular weights alone). The classic models never are: they are
+    /// not normalized (see `tests/brdf_laws.rs` for by how much they can exceed 1).
+    ///
+    /// Materials that are not energy conserving are still accepted: this is a flag, not a
+    /// validation rule.
+    ///
+    /// ```
+    /// use shadeline::{Material, Model, Specular};
+    /// let m = Material { kd: 0.7, ks: 0.3, model: Model::NormalizedPhong(Specular::default()),
+    ///                    ..Material::default() };
+    /// assert!(m.is_energy_conserving());
+    /// assert!(!Material { ks: 0.9, ..m }.is_energy_conserving());
+    /// assert!(!Material::default().is_energy_conserving()); // classic Phong
+    /// ```
+    pub fn is_energy_conserving(&self) -> bool {
+        let a = self.albedo;
+        let diffuse = self.kd * a.r.max(a.g).max(a.b);
+        match self.model {
+            Model::Phong | Model::BlinnPhong => false,
+            Model::Lambert => diffuse <= 1.0,
+            Model::NormalizedPhong(spec) | Model::NormalizedBlinnPhong(spec) => {
+                let specular = self.ks + spec.more_lobes.iter().map(|l| l.weight).sum::<f32>();
+                match spec.surface {
+                    Surface::Metal(_) => specular <= 1.0,
+                    Surface::Dielectric { .. } => diffuse + specular <= 1.0,
+                }
+            }
+        }
     }
 }
 

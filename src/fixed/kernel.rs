@@ -97,8 +97,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 }
                 continue;
             }
-            add(&mut diffuse, self.diffuse(n, &incoming));
-            add(&mut specular, self.specular(sphere, n, d, &incoming));
+            if sphere.normalized {
+                let (dif, spec) = self.normalized(sphere, n, d, &incoming);
+                add(&mut diffuse, dif);
+                add(&mut specular, spec);
+            } else {
+                add(&mut diffuse, self.diffuse(n, &incoming));
+                add(&mut specular, self.specular(sphere, n, d, &incoming));
+            }
         }
         Some(Shaded {
             color: self.encode(sphere, diffuse, specular),
@@ -236,6 +242,89 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         incoming
             .arriving
             .map(|i| u32::try_from((i as u64 * lobe) >> 31).unwrap_or(u32::MAX))
+    }
+
+    /// The normalized models' `diffuse` and `specular` terms, U16F16 per channel: the
+    /// integer form of [`crate::brdf::terms`]. Diffuse `I·max(0, N·L)·(1 − F)` (or without
+    /// `1 − F`), specular `I·max(0, N·L)·F·Σ wₖcₖ·lobeₖ`, every lobe from the same `h` and
+    /// the same [`lobe`] as the classic models; `F = F₀ + (1 − F₀)(1 − L·H)⁵` in U2F30.
+    #[inline(always)]
+    fn normalized(
+        &self,
+        s: &FixedSphere,
+        n: V3<Unit>,
+        d: V3<Unit>,
+        incoming: &Incoming,
+    ) -> ([u32; 3], [u32; 3]) {
+        const ONE: u64 = 1 << 30;
+        let l = incoming.to_light;
+        let n_dot_l = dot_unit(n, l).clamp(0, ONE as i64) as u64; // U2F30
+        if n_dot_l == 0 || l == [Unit::ZERO; 3] {
+            return ([0; 3], [0; 3]);
+        }
+        // H = normalize(L + V), V = −d; needed by Blinn-Phong lobes and by Fresnel.
+        let half = (s.blinn || s.schlick)
+            .then(|| normalize(each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64)))
+            .flatten();
+        // u = R − V or N − H, raw F30; h = ½|u|² = 1 − cos in U3F61, as in `specular`.
+        let u: Option<V3<i64>> = if s.blinn {
+            half.map(|h| each3(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64))
+        } else {
+            let k = dot_unit(n, l);
+            Some(each3(|i| {
+                let r =
+                    ((2 * k).saturating_mul(n[i].to_bits() as i64) >> 30) - l[i].to_bits() as i64;
+                r + d[i].to_bits() as i64
+            }))
+        };
+        // Σ wₖcₖ·lobeₖ in U16F16.
+        let mut sum = 0u32;
+        if let Some(u) = u {
+            let h = u.iter().fold(0u64, |acc, &c| {
+                acc.saturating_add(c.unsigned_abs().saturating_mul(c.unsigned_abs()))
+            });
+            let exponents = [s.shininess, s.more_shininess[0], s.more_shininess[1]];
+            for (w, e) in s.weight.iter().zip(exponents) {
+                if w.mantissa == 0 {
+                    continue;
+                }
+                let lobe = lobe(h, e) as u64; // U1F31
+                                              // lobe·w as U16F16: (lobe·2⁻³¹)·(m·2^e)·2¹⁶.
+                let term = shift_saturating(lobe * w.mantissa as u64, w.exponent - 15);
+                sum = sum.saturating_add(term);
+            }
+        }
+        // Schlick: (1 − L·H)⁵ in U2F30.
+        let weight5 = match half {
+            Some(h) if s.schlick => {
+                let c = dot_unit(l, h).clamp(0, ONE as i64) as u64;
+                let m = ONE - c;
+                let m2 = (m * m) >> 30;
+                (((m2 * m2) >> 30) * m) >> 30
+            }
+            _ => 0,
+        };
+        let f = s.f0.map(|f0| {
+            let f0 = f0 as u64;
+            f0 + (((ONE - f0) * weight5) >> 30)
+        });
+        let diffuse_scale = if s.diffuse_loss {
+            ONE - f[0].min(ONE)
+        } else {
+            ONE
+        };
+        let lit = (n_dot_l * diffuse_scale) >> 30; // U2F30
+        let spec = (sum as u64 * n_dot_l) >> 30; // U16F16 (saturated below)
+        let spec = spec.min(u32::MAX as u64);
+        let diffuse = incoming
+            .arriving
+            .map(|i| u32::try_from((i as u64 * lit) >> 30).unwrap_or(u32::MAX));
+        let specular = each3(|c| {
+            let t = ((spec * f[c]) >> 30).min(u32::MAX as u64);
+            let i = incoming.arriving[c] as u64;
+            u32::try_from(i.saturating_mul(t) >> 16).unwrap_or(u32::MAX)
+        });
+        (diffuse, specular)
     }
 
     /// `kd·albedo·diffuse + ks·specular` per channel, U16F16, saturating.

@@ -15,8 +15,9 @@ use super::exact::Exact;
 use super::roots::inv_sqrt;
 use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
+use crate::brdf::{Params, LOBES};
 use crate::render::RenderError;
-use crate::scene::{Item, Light, Model, Scene};
+use crate::scene::{Item, Light, Scene, MORE_LOBES};
 use crate::vec3::Vec3;
 use crate::MAX_DIMENSION;
 use fixed::types::{I16F48, I32F32, U16F16};
@@ -49,6 +50,18 @@ pub(crate) struct FixedSphere {
     pub ks: U16F16,
     pub shininess: Exact,
     pub blinn: bool,
+    /// A normalized model (or Lambert): the kernel's `normalized` terms, not the classic ones.
+    pub normalized: bool,
+    /// Normalized models: each lobe's weight times its normalization factor, exact.
+    pub weight: [Exact; LOBES],
+    /// Exponents of lobes 1 and 2.
+    pub more_shininess: [Exact; MORE_LOBES],
+    /// `F₀` per channel, U2F30 (`1 << 30` is 1).
+    pub f0: [u32; 3],
+    /// Schlick's factor applies.
+    pub schlick: bool,
+    /// The diffuse lobe is multiplied by `1 − F`.
+    pub diffuse_loss: bool,
     /// The screen rectangle, or `None` if the sphere is off screen.
     pub bounds: Option<Bounds>,
 }
@@ -198,9 +211,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let inv_radius =
                 inv_sqrt((radius_raw * radius_raw) as u64).ok_or(out_of_range(item, "radius"))?;
             to_levels([m.albedo.r, m.albedo.g, m.albedo.b], item, "albedo")?;
-            let kd_albedo = Vec3::new(m.albedo.r, m.albedo.g, m.albedo.b).scale(m.kd);
+            // The float paths' constants (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1 for the
+            // normalized models; normalization factors; F₀), converted to fixed formats.
+            let params = Params::<f32>::of(m);
+            let kd_albedo = params.kd_albedo;
             let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
-            let [ks, _, _] = to_levels([m.ks, 0.0, 0.0], item, "ks")?;
+            let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
+            let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
             let sphere = FixedSphere {
                 center,
                 eye_offset: each3(|c| eye[c] - center[c]),
@@ -209,7 +226,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 kd_albedo,
                 ks,
                 shininess: Exact::from_f32(m.shininess),
-                blinn: m.model == Model::BlinnPhong,
+                blinn: params.blinn > 0.0,
+                normalized: params.normalized > 0.0,
+                weight: params.weight.map(Exact::from_f32),
+                more_shininess: params.more_shininess.map(Exact::from_f32),
+                f0: [params.f0.x, params.f0.y, params.f0.z].map(unit),
+                schlick: params.schlick > 0.0,
+                diffuse_loss: params.diffuse_loss > 0.0,
                 bounds: view.bounds(s.center, s.radius),
             };
             // Same capacity as the scene: cannot fail.

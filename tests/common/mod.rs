@@ -267,3 +267,89 @@ pub fn point_lights_blinn_phong() -> Result<Scene<4, 4>, SceneError> {
     })?;
     Ok(scene)
 }
+
+/// Any model, with random specular options: classic Phong and Blinn-Phong, Lambert, and the
+/// normalized models as dielectrics (with or without `ior`) or metals, with one to three
+/// lobes. Weights may sum above 1 (accepted, only flagged).
+pub fn any_model() -> impl Strategy<Value = Model> {
+    let lobe = (0.0f32..1.0, 0.0f32..3.3).prop_map(|(weight, log_n)| Lobe {
+        weight,
+        shininess: 10f32.powf(log_n),
+    });
+    let surface = prop_oneof![
+        Just(Surface::Dielectric { ior: None }),
+        (1.01f32..3.0).prop_map(|ior| Surface::Dielectric { ior: Some(ior) }),
+        prop::sample::select(Metal::ALL.to_vec()).prop_map(Surface::Metal),
+    ];
+    let lobes = (0usize..=2, lobe.clone(), lobe).prop_map(|(count, a, b)| {
+        let mut more = [Lobe::NONE; MORE_LOBES];
+        for (slot, l) in more.iter_mut().zip([a, b]).take(count) {
+            *slot = l;
+        }
+        more
+    });
+    (0u8..5, surface, lobes).prop_map(|(kind, surface, more_lobes)| {
+        let spec = Specular {
+            surface,
+            more_lobes,
+        };
+        match kind {
+            0 => Model::Phong,
+            1 => Model::BlinnPhong,
+            2 => Model::Lambert,
+            3 => Model::NormalizedPhong(spec),
+            _ => Model::NormalizedBlinnPhong(spec),
+        }
+    })
+}
+
+fn any_material() -> impl Strategy<Value = Material> {
+    (
+        color(0.0, 1.0),
+        0.0f32..1.0,
+        0.0f32..1.0,
+        0.0f32..3.3,
+        any_model(),
+    )
+        .prop_map(|(albedo, kd, ks, log_n, model)| Material {
+            albedo,
+            kd,
+            ks,
+            shininess: 10f32.powf(log_n),
+            model,
+        })
+}
+
+/// Like [`scene_strategy`], but the spheres' materials use every model ([`any_model`]).
+pub fn all_models_scene_strategy() -> impl Strategy<Value = TestScene> {
+    (scene_strategy(), prop::collection::vec(any_material(), 6)).prop_map(|(scene, materials)| {
+        let mut out = TestScene::new(*scene.camera(), scene.background()).expect("valid");
+        for (s, material) in scene.spheres().iter().zip(materials) {
+            out.add_sphere(Sphere { material, ..*s })
+                .expect("valid sphere");
+        }
+        for l in scene.lights() {
+            out.add_light(*l).expect("valid light");
+        }
+        out
+    })
+}
+
+/// `n` random scenes using every model, from a fixed seed.
+pub fn random_scenes_all_models(n: usize, seed: u64) -> Vec<TestScene> {
+    let config = Config {
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner = TestRunner::new(config);
+    let strategy = all_models_scene_strategy();
+    (0..n)
+        .map(|_| {
+            strategy
+                .new_tree(&mut runner)
+                .expect("strategy generates")
+                .current()
+        })
+        .collect()
+}
