@@ -52,6 +52,7 @@
 #![deny(missing_docs)]
 
 pub mod brdf;
+pub mod encoding;
 pub mod fixed;
 mod float_kernel;
 pub mod float_math;
@@ -65,11 +66,14 @@ pub mod scene;
 pub mod spans;
 pub mod vec3;
 
+pub use encoding::{Encoded, Encoding, Transfer};
 pub use fixed::PreparedFixed;
-pub use pixel::{FixedShade, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade};
+pub use pixel::{
+    Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
+};
 pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
 pub use presets::{exponent_series, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE};
-pub use render::{Render, RenderError};
+pub use render::{Render, RenderError, LINE_CHUNK};
 pub use scene::{
     Camera, Item, ItemKind, Light, Lobe, Material, Metal, Model, Problem, Scene, SceneError,
     Specular, Sphere, Surface, MORE_LOBES,

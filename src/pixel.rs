@@ -3,9 +3,22 @@
 //! The kernels produce linear RGB (and, for the diagnostic [`HitRecord`] format, which sphere
 //! was hit and which lights were blocked). The encode stage is the same for every path that
 //! produces `f32`: clamp each channel to `[0, 1]`, scale to the format's largest level and
-//! round to nearest (`⌊c·max + ½⌋`). No gamma is applied: the scene's numbers are written
-//! as-is, as in the lesson. NaN cannot reach this stage (the scene model rules it out), but the
-//! clamp is written so that it would encode as 0, never as garbage.
+//! round to nearest (`⌊c·max + ½⌋`). By default no gamma is applied: the scene's numbers are
+//! written as-is, as in the lesson; a frame can instead encode with sRGB and ordered dithering
+//! (see [`crate::encoding`]). NaN cannot reach this stage (the scene model rules it out), but
+//! the clamp is written so that it would encode as 0, never as garbage.
+//!
+//! | format | storage | channels |
+//! |---|---|---|
+//! | [`Rgb888`] | 3 bytes `R, G, B` | 8 bits each, `0..=255` |
+//! | [`Rgb565`] | native `u16`, red high | 5/6/5 bits |
+//! | [`Bgr565`] | native `u16`, blue high | 5/6/5 bits |
+//! | [`Gray8`] | 1 byte | 8-bit Rec. 709 luma |
+//! | [`LinearRgb`] | 3 × `f32` | the kernel's linear colour, unclamped |
+//! | [`HitRecord`] | sphere index and shadow bits | what the kernel decided |
+//!
+//! For a display's byte layout (RGB565 big-endian) see [`BytePixel`] and
+//! [`Render::render_line_bytes`](crate::Render::render_line_bytes).
 
 /// A linear RGB triple: a colour in the scene, and the unclamped `f32` output format.
 ///
@@ -87,7 +100,9 @@ pub struct FixedShade {
 
 /// A pixel format the row renderers can write.
 ///
-/// Implemented for [`Rgb888`], [`Rgb565`], [`LinearRgb`] and [`HitRecord`].
+/// Implemented for [`Rgb888`], [`Rgb565`], [`Bgr565`], [`Gray8`], [`LinearRgb`] and
+/// [`HitRecord`]. The [`Encoding`](crate::Encoding) of a frame applies to the formats with
+/// [`Pixel::LEVELS`]; the others store the kernel's output as it is.
 pub trait Pixel: Copy {
     /// Whether [`Shade::hit`] must be filled in; formats that only store colour leave it
     /// `false` so the kernel skips the bookkeeping.
@@ -97,6 +112,11 @@ pub trait Pixel: Copy {
     /// of [`quantize`] and build pixels with [`Pixel::from_levels`]. `None` for formats that
     /// store something else; they get [`Pixel::encode`] per pixel.
     const LEVELS: Option<[u16; 3]> = None;
+    /// Whether the format stores one grey level instead of three channels: the encode stage
+    /// then quantizes the luma of the clamped channels (weights
+    /// [`LUMA_WEIGHTS`](crate::encoding::LUMA_WEIGHTS)) with `LEVELS[0]` and passes it to
+    /// [`Pixel::from_levels`] as all three levels. Only meaningful with `LEVELS`.
+    const GRAY: bool = false;
     /// Builds a pixel from channel levels in `0..=LEVELS[c]`; only called when
     /// [`Pixel::LEVELS`] is `Some`. The default ignores the levels (for formats without them).
     #[inline(always)]
@@ -186,6 +206,153 @@ impl Pixel for Rgb565 {
             quantize_fixed(g, 63),
             quantize_fixed(b, 31),
         )
+    }
+}
+
+/// 5-6-5 bits packed in a native-endian `u16` with blue in the high bits: blue in bits
+/// 15..11, green 10..5, red 4..0 (the "BGR" order some panels are wired for, e.g. with an
+/// ST7789/ILI9341 whose `MADCTL` BGR bit is set).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
+#[repr(transparent)]
+pub struct Bgr565(pub u16);
+
+impl Bgr565 {
+    /// Packs 5-bit red, 6-bit green and 5-bit blue levels (blue in the high bits).
+    #[inline(always)]
+    pub fn pack(r: u16, g: u16, b: u16) -> Self {
+        Bgr565(((b & 0x1f) << 11) | ((g & 0x3f) << 5) | (r & 0x1f))
+    }
+
+    /// The 5-bit red, 6-bit green and 5-bit blue levels.
+    pub fn levels(self) -> (u8, u8, u8) {
+        (
+            (self.0 & 0x1f) as u8,
+            ((self.0 >> 5) & 0x3f) as u8,
+            (self.0 >> 11) as u8,
+        )
+    }
+}
+
+impl Pixel for Bgr565 {
+    const LEVELS: Option<[u16; 3]> = Some([31, 63, 31]);
+    #[inline(always)]
+    fn from_levels([r, g, b]: [u16; 3]) -> Self {
+        Bgr565::pack(r, g, b)
+    }
+    #[inline(always)]
+    fn encode(s: &Shade) -> Self {
+        Bgr565::pack(
+            quantize(s.color.r, 31.0),
+            quantize(s.color.g, 63.0),
+            quantize(s.color.b, 31.0),
+        )
+    }
+    #[inline(always)]
+    fn encode_fixed(s: &FixedShade) -> Self {
+        let [r, g, b] = s.color;
+        Bgr565::pack(
+            quantize_fixed(r, 31),
+            quantize_fixed(g, 63),
+            quantize_fixed(b, 31),
+        )
+    }
+}
+
+/// An 8-bit grey level, `0..=255`: the luma of the linear colour with the Rec. 709 weights
+/// `0.2126, 0.7152, 0.0722` as 16-bit fractions ([`LUMA_WEIGHTS`](crate::encoding::LUMA_WEIGHTS)).
+///
+/// The rule, per path: the float paths clamp each channel to `[0, 1]`, form
+/// `r·w_r + g·w_g + b·w_b` in `f32` (left to right, the weights exact in `f32`) and round it
+/// like [`quantize`]; the fixed path forms the same sum in integers
+/// ([`luma_code`](crate::encoding::luma_code)) and rounds it like [`quantize_fixed`]. With a
+/// non-default [`Encoding`](crate::Encoding) both take the integer route from linear codes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
+#[repr(transparent)]
+pub struct Gray8(pub u8);
+
+/// The float paths' luma of a clamped colour (see [`Gray8`]).
+#[inline(always)]
+pub(crate) fn luma_f32(c: LinearRgb) -> f32 {
+    let clamp = |v: f32| {
+        let v = if v > 0.0 { v } else { 0.0 };
+        if v < 1.0 {
+            v
+        } else {
+            1.0
+        }
+    };
+    let [wr, wg, wb] = crate::encoding::LUMA_WEIGHTS_F32;
+    clamp(c.r) * wr + clamp(c.g) * wg + clamp(c.b) * wb
+}
+
+impl Pixel for Gray8 {
+    const LEVELS: Option<[u16; 3]> = Some([255, 255, 255]);
+    const GRAY: bool = true;
+    #[inline(always)]
+    fn from_levels([l, _, _]: [u16; 3]) -> Self {
+        Gray8(l as u8)
+    }
+    #[inline(always)]
+    fn encode(s: &Shade) -> Self {
+        Gray8(quantize(luma_f32(s.color), 255.0) as u8)
+    }
+    #[inline(always)]
+    fn encode_fixed(s: &FixedShade) -> Self {
+        Gray8(quantize_fixed(crate::encoding::luma_code(s.color), 255) as u8)
+    }
+}
+
+/// A format with a byte layout a display controller takes as it is, for
+/// [`Render::render_line_bytes`](crate::Render::render_line_bytes).
+///
+/// | format | bytes per pixel | byte order |
+/// |---|---|---|
+/// | [`Rgb565`] | 2 | big-endian: `RRRRRGGG GGGBBBBB` (what SPI panels such as the ST7789 and ILI9341 read in their 16-bit mode) |
+/// | [`Bgr565`] | 2 | big-endian: `BBBBBGGG GGGRRRRR` |
+/// | [`Rgb888`] | 3 | `R, G, B` |
+/// | [`Gray8`] | 1 | the level |
+pub trait BytePixel: Pixel + Default {
+    /// Bytes per pixel.
+    const BYTES: usize;
+    /// The bytes, `BYTES` long.
+    type Bytes: AsRef<[u8]>;
+    /// The pixel as the display takes it.
+    fn to_bytes(self) -> Self::Bytes;
+}
+
+impl BytePixel for Rgb565 {
+    const BYTES: usize = 2;
+    type Bytes = [u8; 2];
+    #[inline(always)]
+    fn to_bytes(self) -> [u8; 2] {
+        self.0.to_be_bytes()
+    }
+}
+
+impl BytePixel for Bgr565 {
+    const BYTES: usize = 2;
+    type Bytes = [u8; 2];
+    #[inline(always)]
+    fn to_bytes(self) -> [u8; 2] {
+        self.0.to_be_bytes()
+    }
+}
+
+impl BytePixel for Rgb888 {
+    const BYTES: usize = 3;
+    type Bytes = [u8; 3];
+    #[inline(always)]
+    fn to_bytes(self) -> [u8; 3] {
+        [self.r, self.g, self.b]
+    }
+}
+
+impl BytePixel for Gray8 {
+    const BYTES: usize = 1;
+    type Bytes = [u8; 1];
+    #[inline(always)]
+    fn to_bytes(self) -> [u8; 1] {
+        [self.0]
     }
 }
 

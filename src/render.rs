@@ -10,9 +10,10 @@
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
 
+use crate::encoding::{linear_code, pixel_from_codes, Encoded, Encoding};
 use crate::float_kernel::Packet;
 use crate::lane::Lane;
-use crate::pixel::{HitRecord, LinearRgb, Pixel, Shade};
+use crate::pixel::{BytePixel, HitRecord, LinearRgb, Pixel, Shade};
 use crate::prepare::{FloatPath, Prepared};
 use crate::scene::Item;
 use crate::spans::Span;
@@ -39,6 +40,22 @@ pub enum RenderError {
     /// The frame slice's length is not width × height.
     FrameLength {
         /// width × height.
+        expected: usize,
+        /// The slice's length.
+        got: usize,
+    },
+    /// A segment of a row reaches past the image width.
+    SegmentOutOfRange {
+        /// The segment's first pixel.
+        x: u32,
+        /// The segment's length in pixels.
+        len: usize,
+        /// The image width.
+        width: u32,
+    },
+    /// A byte row's length is not the image width times the format's bytes per pixel.
+    ByteLength {
+        /// width × bytes per pixel.
         expected: usize,
         /// The slice's length.
         got: usize,
@@ -76,6 +93,14 @@ impl fmt::Display for RenderError {
                 f,
                 "frame buffer holds {got} pixels, the image has {expected}"
             ),
+            RenderError::SegmentOutOfRange { x, len, width } => write!(
+                f,
+                "a segment of {len} pixels at x = {x} does not fit a row {width} pixels wide"
+            ),
+            RenderError::ByteLength { expected, got } => write!(
+                f,
+                "byte row holds {got} bytes, the image row needs {expected}"
+            ),
             RenderError::RowOutOfRange { y, height } => {
                 write!(f, "row {y} is outside an image {height} rows high")
             }
@@ -91,6 +116,10 @@ impl core::error::Error for RenderError {}
 
 /// Anything that renders rows: every path's prepared frame implements it.
 ///
+/// A path implements [`render_segment_with`](Render::render_segment_with) (any run of pixels
+/// of one row, with an explicit [`Encoding`]) and, to let sinks skip background rows,
+/// [`row_coverage`](Render::row_coverage); everything else is built on those.
+///
 /// ```
 /// use shadeline::{Prepared, Render, Simd8, Rgb565, exponent_series};
 /// let frame = Prepared::<Simd8>::new(&exponent_series()?, 32, 24)?;
@@ -103,8 +132,53 @@ pub trait Render {
     fn width(&self) -> u32;
     /// The image height in pixels.
     fn height(&self) -> u32;
-    /// Shades row `y` (0 = top) into `out`, which must be exactly `width` pixels long.
-    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError>;
+
+    /// Shades pixels `x .. x + out.len()` of row `y` (0 = top) into `out`, with `encoding`
+    /// instead of the frame's own. A pixel's value depends only on the frame, its `(x, y)` and
+    /// the encoding, never on how a row is cut into segments.
+    ///
+    /// Fails with [`RenderError::RowOutOfRange`] or [`RenderError::SegmentOutOfRange`]
+    /// (nothing written).
+    fn render_segment_with<P: Pixel>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) -> Result<(), RenderError>;
+
+    /// The encoding [`render_line`](Render::render_line) and the other sinks use:
+    /// [`Encoding::LINEAR`] unless the frame was wrapped by
+    /// [`with_encoding`](Render::with_encoding).
+    fn encoding(&self) -> Encoding {
+        Encoding::LINEAR
+    }
+
+    /// The pixel range `[start, end)` of row `y` that the spheres may cover, or `None` if
+    /// every pixel of the row is background (then the row is the background colour encoded
+    /// at each position). Conservative: a covered pixel is never outside it. The default
+    /// says the whole row may be covered.
+    fn row_coverage(&self, y: u32) -> Option<Span> {
+        let _ = y;
+        Some(Span {
+            start: 0,
+            end: self.width(),
+        })
+    }
+
+    /// Shades pixels `x .. x + out.len()` of row `y` with the frame's
+    /// [`encoding`](Render::encoding).
+    fn render_segment<P: Pixel>(&self, y: u32, x: u32, out: &mut [P]) -> Result<(), RenderError> {
+        self.render_segment_with(y, x, out, self.encoding())
+    }
+
+    /// Shades row `y` (0 = top) into `out`, which must be exactly `width` pixels long
+    /// ([`RenderError::LineLength`] otherwise).
+    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError> {
+        check_line(y, out.len(), self.width(), self.height())?;
+        self.render_segment(y, 0, out)
+    }
+
     /// Shades every row into `frame`, row-major, exactly `width × height` pixels long.
     fn render_frame<P: Pixel>(&self, frame: &mut [P]) -> Result<(), RenderError> {
         let w = self.width() as usize;
@@ -119,6 +193,149 @@ pub trait Render {
             self.render_line(y as u32, row)?;
         }
         Ok(())
+    }
+
+    /// Shades row `y` into `bytes` in the byte layout of format `P` (see [`BytePixel`]:
+    /// RGB565 and BGR565 big-endian, as SPI display controllers take them), ready for a DMA
+    /// transfer. `bytes` must be exactly `width × P::BYTES` long ([`RenderError::ByteLength`]
+    /// otherwise; nothing is written on an error).
+    ///
+    /// The row is rendered [`LINE_CHUNK`] pixels at a time into a stack buffer of `P` and
+    /// copied out as bytes: no allocation, no `unsafe` cast of the byte slice, and a stack
+    /// cost of `LINE_CHUNK × size_of::<P>()` bytes whatever the width.
+    ///
+    /// ```
+    /// use shadeline::{exponent_series, Prepared, Render, Rgb565, Scalar};
+    /// let frame = Prepared::<Scalar>::new(&exponent_series()?, 40, 30)?;
+    /// let mut bytes = [0u8; 40 * 2];
+    /// frame.render_line_bytes::<Rgb565>(15, &mut bytes)?;
+    /// let mut line = [Rgb565::default(); 40];
+    /// frame.render_line(15, &mut line)?;
+    /// assert_eq!(bytes[..2], line[0].0.to_be_bytes());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    fn render_line_bytes<P: BytePixel>(&self, y: u32, bytes: &mut [u8]) -> Result<(), RenderError> {
+        let expected = self.width() as usize * P::BYTES;
+        if y >= self.height() {
+            return Err(RenderError::RowOutOfRange {
+                y,
+                height: self.height(),
+            });
+        }
+        if bytes.len() != expected {
+            return Err(RenderError::ByteLength {
+                expected,
+                got: bytes.len(),
+            });
+        }
+        let mut chunk = [P::default(); LINE_CHUNK];
+        for (i, out) in bytes.chunks_mut(LINE_CHUNK * P::BYTES).enumerate() {
+            let n = out.len() / P::BYTES;
+            let Some(pixels) = chunk.get_mut(..n) else {
+                break;
+            };
+            self.render_segment(y, (i * LINE_CHUNK) as u32, pixels)?;
+            for (dst, px) in out.chunks_exact_mut(P::BYTES).zip(pixels.iter()) {
+                for (d, s) in dst.iter_mut().zip(px.to_bytes().as_ref()) {
+                    *d = *s;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// This frame, rendering with `encoding` from now on (see [`crate::encoding`]).
+    ///
+    /// ```
+    /// use shadeline::{exponent_series, Encoding, PreparedFixed, Render, Gray8};
+    /// let frame = PreparedFixed::new(&exponent_series()?, 64, 48)?
+    ///     .with_encoding(Encoding::SRGB.dithered());
+    /// let mut line = [Gray8::default(); 64];
+    /// frame.render_line(24, &mut line)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    fn with_encoding(self, encoding: Encoding) -> Encoded<Self>
+    where
+        Self: Sized,
+    {
+        Encoded::new(self, encoding)
+    }
+}
+
+/// Pixels per stack chunk of the byte and embedded-graphics sinks.
+pub const LINE_CHUNK: usize = 64;
+
+/// Checks a segment request against an image size.
+pub(crate) fn check_segment(
+    y: u32,
+    x: u32,
+    len: usize,
+    width: u32,
+    height: u32,
+) -> Result<(), RenderError> {
+    if y >= height {
+        return Err(RenderError::RowOutOfRange { y, height });
+    }
+    if x as usize + len > width as usize {
+        return Err(RenderError::SegmentOutOfRange { x, len, width });
+    }
+    Ok(())
+}
+
+/// The covered hull of a row's spans: from the smallest start to the largest end.
+pub(crate) fn coverage_of(spans: &[Option<Span>]) -> Option<Span> {
+    spans.iter().flatten().fold(None, |acc: Option<Span>, s| {
+        Some(match acc {
+            None => *s,
+            Some(a) => Span {
+                start: a.start.min(s.start),
+                end: a.end.max(s.end),
+            },
+        })
+    })
+}
+
+/// The background of one row, encoded: one pixel, or four (`x mod 4`) when dithering.
+pub(crate) struct Background<P> {
+    pixels: [P; 4],
+    dither: bool,
+}
+
+impl<P: Pixel> Background<P> {
+    /// `pixel(x)` encodes the background at column `x` (called for `x` in `0..4`, or once
+    /// with 0 when not dithering).
+    #[inline(always)]
+    pub(crate) fn new(encoding: Encoding, pixel: impl Fn(u32) -> P) -> Self {
+        let first = pixel(0);
+        if encoding.dither && P::LEVELS.is_some() {
+            Background {
+                pixels: [first, pixel(1), pixel(2), pixel(3)],
+                dither: true,
+            }
+        } else {
+            Background {
+                pixels: [first; 4],
+                dither: false,
+            }
+        }
+    }
+
+    /// The pixel at column `x`.
+    #[inline(always)]
+    pub(crate) fn at(&self, x: usize) -> P {
+        self.pixels[x & 3]
+    }
+
+    /// Fills `out`, whose first pixel is column `x`.
+    #[inline(always)]
+    pub(crate) fn fill(&self, out: &mut [P], x: usize) {
+        if self.dither {
+            for (px, x) in out.iter_mut().zip(x..) {
+                *px = self.at(x);
+            }
+        } else {
+            out.fill(self.pixels[0]);
+        }
     }
 }
 
@@ -176,7 +393,14 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         self
     }
 
-    fn background_pixel<P: Pixel>(&self) -> P {
+    fn background_pixel<P: Pixel>(&self, encoding: Encoding, x: u32, y: u32) -> P {
+        if !encoding.is_default() {
+            let c = self.background;
+            let codes = [linear_code(c.r), linear_code(c.g), linear_code(c.b)];
+            if let Some(px) = pixel_from_codes(codes, encoding, x, y) {
+                return px;
+            }
+        }
         P::encode(&Shade {
             color: self.background,
             hit: HitRecord::default(),
@@ -193,22 +417,37 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         self.height
     }
 
-    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError> {
-        check_line(y, out.len(), self.width, self.height)?;
+    fn row_coverage(&self, y: u32) -> Option<Span> {
+        coverage_of(&self.row_spans(y))
+    }
+
+    fn render_segment_with<P: Pixel>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) -> Result<(), RenderError> {
+        check_segment(y, x, out.len(), self.width, self.height)?;
         let lanes = W::Lane::LANES;
         let row = self.row(y);
         let spans = self.row_spans(y);
         let runs = merge_runs::<S>(&spans);
-        let background = self.background_pixel::<P>();
+        let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
+        let (seg_start, seg_end) = (x as usize, x as usize + out.len());
 
-        let mut x = 0usize;
+        let mut x = seg_start;
         for run in &runs {
-            let (start, end) = (run.start as usize, run.end as usize);
-            if let Some(gap) = out.get_mut(x..start) {
-                gap.fill(background);
+            let start = (run.start as usize).max(seg_start);
+            let end = (run.end as usize).min(seg_end);
+            if start >= end {
+                continue;
+            }
+            if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
+                background.fill(gap, x);
             }
             x = end;
-            let Some(run_pixels) = out.get_mut(start..end) else {
+            let Some(run_pixels) = out.get_mut(start - seg_start..end - seg_start) else {
                 continue;
             };
             for (chunk_index, chunk) in run_pixels.chunks_mut(lanes).enumerate() {
@@ -223,41 +462,74 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
                     }
                 }
                 if candidates.is_empty() {
-                    chunk.fill(background);
+                    background.fill(chunk, x0 as usize);
                     continue;
                 }
                 let packet = self.shade_packet(&row, x0, &candidates, P::NEEDS_HITS);
-                store_packet(chunk, &packet);
+                store_packet(chunk, &packet, encoding, x0, y);
             }
         }
-        if let Some(tail) = out.get_mut(x..) {
-            tail.fill(background);
+        if let Some(tail) = out.get_mut(x - seg_start..) {
+            background.fill(tail, x);
         }
         Ok(())
     }
 }
 
-/// The encode stage of the float paths: writes the first `chunk.len()` lanes of a packet.
+/// The encode stage of the float paths: writes the first `chunk.len()` lanes of a packet
+/// whose first pixel is `(x0, y)`.
 ///
-/// Formats with levels are quantized a packet at a time, with the rule of
-/// [`quantize`](crate::pixel::quantize) (clamp with NaN to 0, `c·max + ½`, truncate), so every
-/// width stores the bits the scalar path stores.
+/// With [`Encoding::LINEAR`], formats with levels are quantized a packet at a time, with the
+/// rule of [`quantize`](crate::pixel::quantize) (clamp with NaN to 0, `c·max + ½`, truncate;
+/// [`Gray8`](crate::Gray8) on the luma), so every width stores the bits the scalar path stores.
+/// Other encodings compute the linear codes a packet at a time
+/// ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
+/// ([`crate::encoding`]).
 #[inline(always)]
-fn store_packet<P: Pixel, T: Lane>(chunk: &mut [P], packet: &Packet<T>) {
+fn store_packet<P: Pixel, T: Lane>(
+    chunk: &mut [P],
+    packet: &Packet<T>,
+    encoding: Encoding,
+    x0: u32,
+    y: u32,
+) {
     if let Some(max) = P::LEVELS {
         let zero = T::splat(0.0);
         let one = T::splat(1.0);
         let half = T::splat(0.5);
-        let quantize = |c: T, max: u16| {
+        let clamp = |c: T| {
             let c = T::select(zero.lt(c), c, zero);
-            let c = T::select(c.lt(one), c, one);
-            (c * T::splat(max as f32) + half).trunc_lanes()
+            T::select(c.lt(one), c, one)
         };
-        let r = quantize(packet.color.x, max[0]);
-        let g = quantize(packet.color.y, max[1]);
-        let b = quantize(packet.color.z, max[2]);
-        for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
-            *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
+        let quantize = |c: T, max: f32| (clamp(c) * T::splat(max) + half).trunc_lanes();
+        if encoding.is_default() {
+            if P::GRAY {
+                let [wr, wg, wb] = crate::encoding::LUMA_WEIGHTS_F32;
+                let luma = clamp(packet.color.x) * T::splat(wr)
+                    + clamp(packet.color.y) * T::splat(wg)
+                    + clamp(packet.color.z) * T::splat(wb);
+                let l = quantize(luma, max[0] as f32);
+                for (px, l) in chunk.iter_mut().zip(&l) {
+                    *px = P::from_levels([*l as u16; 3]);
+                }
+                return;
+            }
+            let r = quantize(packet.color.x, max[0] as f32);
+            let g = quantize(packet.color.y, max[1] as f32);
+            let b = quantize(packet.color.z, max[2] as f32);
+            for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
+                *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
+            }
+            return;
+        }
+        let r = quantize(packet.color.x, 65536.0);
+        let g = quantize(packet.color.y, 65536.0);
+        let b = quantize(packet.color.z, 65536.0);
+        let codes = r.iter().zip(&g).zip(&b);
+        for ((px, ((r, g), b)), x) in chunk.iter_mut().zip(codes).zip(x0..) {
+            if let Some(p) = pixel_from_codes([*r as u32, *g as u32, *b as u32], encoding, x, y) {
+                *px = p;
+            }
         }
         return;
     }

@@ -11,8 +11,9 @@
 use super::kernel::ray;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
+use crate::encoding::{linear_code_fixed, pixel_from_codes, Encoding};
 use crate::pixel::{FixedShade, HitRecord, Pixel};
-use crate::render::{check_line, merge_runs, Render, RenderError};
+use crate::render::{check_segment, coverage_of, merge_runs, Background, Render, RenderError};
 use crate::spans::Span;
 use fixed::types::I16F48;
 
@@ -62,44 +63,67 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         self.height
     }
 
-    fn render_line<P: Pixel>(&self, y: u32, out: &mut [P]) -> Result<(), RenderError> {
-        check_line(y, out.len(), self.width, self.height)?;
+    fn row_coverage(&self, y: u32) -> Option<Span> {
+        coverage_of(&self.row_spans(y))
+    }
+
+    fn render_segment_with<P: Pixel>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) -> Result<(), RenderError> {
+        check_segment(y, x, out.len(), self.width, self.height)?;
         let spans = self.row_spans(y);
         let runs = merge_runs::<S>(&spans);
-        let background = P::encode_fixed(&FixedShade {
-            color: self.background,
-            hit: HitRecord::default(),
+        let background = Background::new(encoding, |x| {
+            encode(self.background, HitRecord::default(), encoding, x, y)
         });
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
+        let (seg_start, seg_end) = (x as usize, x as usize + out.len());
 
-        let mut x = 0usize;
+        let mut x = seg_start;
         for run in &runs {
-            let (start, end) = (run.start as usize, run.end as usize);
-            if let Some(gap) = out.get_mut(x..start) {
-                gap.fill(background);
+            let start = (run.start as usize).max(seg_start);
+            let end = (run.end as usize).min(seg_end);
+            if start >= end {
+                continue;
+            }
+            if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
+                background.fill(gap, x);
             }
             x = end;
-            let Some(run_pixels) = out.get_mut(start..end) else {
+            let Some(run_pixels) = out.get_mut(start - seg_start..end - seg_start) else {
                 continue;
             };
-            let mut dir = self.direction(run.start, y);
-            for (px, column) in run_pixels.iter_mut().zip(run.start..) {
+            let mut dir = self.direction(start as u32, y);
+            for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                 let shaded = ray(dir).and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS));
                 *px = match shaded {
-                    Some(s) => P::encode_fixed(&FixedShade {
-                        color: s.color,
-                        hit: s.hit,
-                    }),
-                    None => background,
+                    Some(s) => encode(s.color, s.hit, encoding, column, y),
+                    None => background.at(column as usize),
                 };
                 for (c, a) in dir.iter_mut().zip(advance) {
                     *c = I16F48::from_bits(c.to_bits().saturating_add(a));
                 }
             }
         }
-        if let Some(tail) = out.get_mut(x..) {
-            tail.fill(background);
+        if let Some(tail) = out.get_mut(x - seg_start..) {
+            background.fill(tail, x);
         }
         Ok(())
     }
+}
+
+/// The encode stage of the fixed path: [`Pixel::encode_fixed`] for the default encoding,
+/// the encoding's integer rule on the linear codes `min(v, 65536)` otherwise.
+#[inline(always)]
+fn encode<P: Pixel>(color: [u32; 3], hit: HitRecord, encoding: Encoding, x: u32, y: u32) -> P {
+    if !encoding.is_default() {
+        if let Some(px) = pixel_from_codes(color.map(linear_code_fixed), encoding, x, y) {
+            return px;
+        }
+    }
+    P::encode_fixed(&FixedShade { color, hit })
 }
