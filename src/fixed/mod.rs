@@ -45,6 +45,27 @@
 //! | shininess `n`, point-light power | `f32` mantissa and exponent (integers) | any `f32` | both span many decades; held exactly |
 //! | `kd·albedo`, `ks`, arriving light, sums, output colour | U16F16 | `[0, 65536)`; inputs ≤ [`MAX_LEVEL`] (32767) | matches [`FixedShade`](crate::FixedShade); products of two are `u64` and saturate, so a point light very close to a surface saturates instead of wrapping (the fixed path's arriving-light cap: 65536) |
 //!
+//! # Reflection models
+//!
+//! The fixed kernel mirrors [`crate::brdf`]'s formulas in integers; the per-material
+//! constants are the float paths' own ([`crate::brdf::Params::of`], `f32`, once per frame),
+//! converted at the fixed prepare:
+//!
+//! | brdf | fixed |
+//! |---|---|
+//! | `kd·albedo` (classic) or `kd·albedo/π` (normalized, Lambert; 0 for metals) | `kd_albedo`, U16F16 |
+//! | `ks` (classic) or 1 (normalized: the weights carry it) | `ks`, U16F16 |
+//! | lobe cosine `R·V` or `N·H` | `h = 1 − cos = ½|R − V|²` or `½|N − H|²`, U3F61, the same for every lobe |
+//! | `max(0, c)^nₖ` for each lobe | the existing `pow::lobe(h, nₖ)`, U1F31, per lobe |
+//! | `wₖ·cₖ` (weight times normalization) | `f32` held exactly (mantissa, exponent): no range limit, the product with the lobe is shifted into U16F16 and saturates |
+//! | `max(0, N·L)` | U2F30 |
+//! | Schlick `(1 − L·H)⁵`, `F = F₀ + (1 − F₀)·w` per channel | U2F30, four multiplications; `F₀` U2F30 |
+//! | diffuse `I·max(0, N·L)·(1 − F)`, specular `I·max(0, N·L)·F·Σ wₖcₖ·lobeₖ` | U16F16, saturating (`normalized` in `kernel`) |
+//!
+//! The classic models keep their own code (`diffuse`, `specular`), unchanged, so their
+//! frames and golden CRCs are the same bits as before the normalized models existed. The
+//! models' budget against the reference is tested in `tests/models_agree.rs`.
+//!
 //! # Refused scenes
 //!
 //! [`PreparedFixed::new`] returns [`RenderError::OutOfFixedRange`](crate::RenderError) naming
