@@ -129,16 +129,17 @@ pub fn materials() -> Result<Scene<16, 4>, SceneError> {
             }),
         },
     ];
-    for (i, material) in top.into_iter().enumerate() {
+    let columns = [-4.4, -2.2, 0.0, 2.2, 4.4];
+    for (x, material) in columns.into_iter().zip(top) {
         scene.add_sphere(Sphere {
-            center: Vec3::new(-4.4 + 2.2 * i as f32, 1.1, 0.0),
+            center: Vec3::new(x, 1.1, 0.0),
             radius: 0.95,
             material,
         })?;
     }
-    for (i, n) in [3.0, 10.0, 30.0, 100.0, 300.0].into_iter().enumerate() {
+    for (x, n) in columns.into_iter().zip([3.0, 10.0, 30.0, 100.0, 300.0]) {
         scene.add_sphere(Sphere {
-            center: Vec3::new(-4.4 + 2.2 * i as f32, -1.1, 0.0),
+            center: Vec3::new(x, -1.1, 0.0),
             radius: 0.95,
             material: Material {
                 albedo: LinearRgb::new(0.18, 0.18, 0.18),

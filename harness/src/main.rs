@@ -2,12 +2,14 @@
 //! `f64` reference.
 //!
 //! ```text
-//! shadeline render  [SCENE.toml] [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
+//! shadeline render  [SCENE.toml | --preset exponent-series|materials]
+//!                   [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
 //!                   [--threads N] [--width W] [--height H] [--repeat N]
-//! shadeline compare [SCENE.toml] [-o compare.png] [--threads N] [--width W] [--height H]
+//! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
 //! ```
 //!
-//! Without a scene file both use the built-in exponent series (the numbers of
+//! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
+//! 768×432). Without a scene file or preset both use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file, size or path is reported as
 //! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2; a failure to write the
 //! output is exit code 1.
@@ -18,7 +20,9 @@ use shadeline_harness::compare::{self, Row};
 use shadeline_harness::image::RgbImage;
 use shadeline_harness::paths::{self, Path, PATHS};
 use shadeline_harness::rows::default_threads;
-use shadeline_harness::scene_file::{builtin_scene, check_size, parse_scene, SceneFile};
+use shadeline_harness::scene_file::{
+    builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
+};
 use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Instant;
@@ -61,8 +65,12 @@ enum Command {
 /// What to render, how large, on how many threads.
 #[derive(Args, Debug)]
 struct Input {
-    /// A scene file (TOML); without one, the built-in exponent series.
+    /// A scene file (TOML); without one (and without `--preset`), the built-in exponent series.
     scene: Option<PathBuf>,
+    /// A built-in scene instead of a file: `exponent-series` or `materials` (the gallery of
+    /// reflection models).
+    #[arg(long, conflicts_with = "scene", value_parser = PossibleValuesParser::new(PRESETS))]
+    preset: Option<String>,
     /// Image width in pixels, instead of the scene file's.
     #[arg(long)]
     width: Option<u32>,
@@ -118,9 +126,13 @@ impl Input {
 
     /// Reads and checks the scene, applying `--width`/`--height`.
     fn load(&self) -> Result<SceneFile, Failure> {
-        let mut file = match &self.scene {
-            None => builtin_scene().map_err(|e| Failure::input(format!("error: {e}")))?,
-            Some(path) => read_scene(path)?,
+        let failed = |e: shadeline::SceneError| Failure::input(format!("error: {e}"));
+        let mut file = match (&self.scene, &self.preset) {
+            (Some(path), _) => read_scene(path)?,
+            (None, Some(name)) => preset(name)
+                .ok_or_else(|| Failure::input(format!("error: unknown preset `{name}`")))?
+                .map_err(failed)?,
+            (None, None) => builtin_scene().map_err(failed)?,
         };
         file.width = self.width.unwrap_or(file.width);
         file.height = self.height.unwrap_or(file.height);

@@ -8,7 +8,16 @@
 //! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear |
 //! | `[camera]` | `position`, `look_at`, `up` = `[x, y, z]`, `vfov` (degrees) |
 //! | `[[light]]` | `type = "distant"` with `direction`, or `type = "point"` with `position`; both with `color`, `intensity` |
-//! | `[[sphere]]` | `center`, `radius`, `albedo`, `kd`, `ks`, `shininess`, optional `model = "phong" \| "blinn-phong"` |
+//! | `[[sphere]]` | `center`, `radius`, `albedo`, `kd`, `ks`, `shininess`, optional `model` (below) |
+//!
+//! Materials (`scenes/materials.toml` shows each):
+//!
+//! | key | values | notes |
+//! |---|---|---|
+//! | `model` | `"phong"` (default), `"blinn-phong"`, `"lambert"`, `"normalized-phong"`, `"normalized-blinn-phong"` | `lambert` needs no `ks`/`shininess` |
+//! | `metal` | `"gold"`, `"copper"`, `"bronze"` | normalized models only; a metal has no diffuse lobe, so no `albedo`/`kd`, and no `ior` |
+//! | `ior` | a number `> 1` | normalized dielectrics: Schlick Fresnel |
+//! | `lobes` | `[{ weight = 0.5, shininess = 20.0 }, …]`, 1 to 3 | normalized models only; replaces `ks` and `shininess` (`lobes[0]`) |
 //!
 //! Parsing has three stages, each of which reports through [`SceneFileError`]: the TOML syntax
 //! and a key index ([`KeyIndex`]); the typed structs (serde, unknown keys refused); and the
@@ -18,8 +27,8 @@
 use crate::toml_keys::KeyIndex;
 use serde::Deserialize;
 use shadeline::{
-    Camera, Item, ItemKind, Light, LinearRgb, Material, Model, Prepared, RenderError, Scalar,
-    Scene, SceneError, Sphere, Vec3, MAX_DIMENSION,
+    Camera, Item, ItemKind, Light, LinearRgb, Lobe, Material, Metal, Model, Prepared, RenderError,
+    Scalar, Scene, SceneError, Specular, Sphere, Surface, Vec3, MAX_DIMENSION, MORE_LOBES,
 };
 use std::fmt;
 use std::ops::Range;
@@ -142,12 +151,15 @@ struct RawLight {
     intensity: f64,
 }
 
-#[derive(Deserialize, Clone, Copy, Default)]
+#[derive(Deserialize, Clone, Copy, Default, PartialEq, Eq)]
 #[serde(rename_all = "kebab-case")]
 enum RawModel {
     #[default]
     Phong,
     BlinnPhong,
+    Lambert,
+    NormalizedPhong,
+    NormalizedBlinnPhong,
 }
 
 #[derive(Deserialize)]
@@ -155,12 +167,22 @@ enum RawModel {
 struct RawSphere {
     center: [f64; 3],
     radius: f64,
-    albedo: [f64; 3],
-    kd: f64,
-    ks: f64,
-    shininess: f64,
+    albedo: Option<[f64; 3]>,
+    kd: Option<f64>,
+    ks: Option<f64>,
+    shininess: Option<f64>,
     #[serde(default)]
     model: RawModel,
+    metal: Option<String>,
+    ior: Option<f64>,
+    lobes: Option<Vec<RawLobe>>,
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct RawLobe {
+    weight: f64,
+    shininess: f64,
 }
 
 /// An `f64` from the file as the core's `f32`. A finite number too large for `f32` becomes
@@ -191,6 +213,10 @@ pub fn parse_scene(text: &str) -> Result<SceneFile, SceneFileError> {
     let place = Placer {
         text,
         index: &index,
+        lobes: (raw.sphere.iter().enumerate())
+            .filter(|(_, s)| s.lobes.is_some())
+            .map(|(i, _)| i)
+            .collect(),
     };
     build(&raw, &place)
 }
@@ -257,6 +283,8 @@ fn toml_error(text: &str, index: &KeyIndex, e: &toml::de::Error) -> SceneFileErr
 struct Placer<'a> {
     text: &'a str,
     index: &'a KeyIndex,
+    /// Spheres whose lobes are written as `lobes = [...]`.
+    lobes: Vec<usize>,
 }
 
 impl Placer<'_> {
@@ -281,7 +309,16 @@ impl Placer<'_> {
             SceneError::Invalid { item, field, .. } => match item {
                 Item::Camera => format!("camera.{field}"),
                 Item::Background => format!("image.{field}"),
-                Item::Sphere(i) => format!("sphere[{i}].{field}"),
+                Item::Sphere(i) => {
+                    // Lobe 0 is `ks`/`shininess` in the core, `lobes[0]` in a file that
+                    // lists lobes.
+                    let field = match field {
+                        "ks" if self.lobes.contains(&i) => "lobes[0].weight",
+                        "shininess" if self.lobes.contains(&i) => "lobes[0].shininess",
+                        f => f,
+                    };
+                    format!("sphere[{i}].{field}")
+                }
                 Item::Light(i) => format!("light[{i}].{field}"),
             },
             SceneError::CapacityExceeded { kind, capacity } => match kind {
@@ -308,20 +345,11 @@ fn build(raw: &RawFile, place: &Placer<'_>) -> Result<SceneFile, SceneFileError>
         let light = light(l, i, place)?;
         scene.add_light(light).map_err(|e| place.scene_error(&e))?;
     }
-    for s in &raw.sphere {
+    for (i, s) in raw.sphere.iter().enumerate() {
         let sphere = Sphere {
             center: vec3(s.center),
             radius: narrow(s.radius),
-            material: Material {
-                albedo: rgb(s.albedo),
-                kd: narrow(s.kd),
-                ks: narrow(s.ks),
-                shininess: narrow(s.shininess),
-                model: match s.model {
-                    RawModel::Phong => Model::Phong,
-                    RawModel::BlinnPhong => Model::BlinnPhong,
-                },
-            },
+            material: material(s, i, place)?,
         };
         scene
             .add_sphere(sphere)
@@ -346,6 +374,132 @@ fn build(raw: &RawFile, place: &Placer<'_>) -> Result<SceneFile, SceneFileError>
 /// Asks the core whether it renders this size, so the file and the renderer agree on limits.
 pub fn check_size(scene: &FileScene, width: u32, height: u32) -> Result<(), RenderError> {
     Prepared::<Scalar, MAX_SPHERES, MAX_LIGHTS>::new(scene, width, height).map(|_| ())
+}
+
+/// A sphere's material from its keys, checking that they fit its `model` (the numbers are
+/// checked by the core).
+fn material(s: &RawSphere, i: usize, place: &Placer<'_>) -> Result<Material, SceneFileError> {
+    let key = |name: &str| format!("sphere[{i}].{name}");
+    let err = |name: &str, message: String| Err(place.error(&key(name), message));
+    let normalized = matches!(
+        s.model,
+        RawModel::NormalizedPhong | RawModel::NormalizedBlinnPhong
+    );
+    for (name, given) in [
+        ("metal", s.metal.is_some()),
+        ("ior", s.ior.is_some()),
+        ("lobes", s.lobes.is_some()),
+    ] {
+        if given && !normalized {
+            return err(
+                name,
+                format!(
+                    "`{name}` needs model = \"normalized-phong\" or \"normalized-blinn-phong\""
+                ),
+            );
+        }
+    }
+    let surface = match &s.metal {
+        None => Surface::Dielectric {
+            ior: s.ior.map(narrow),
+        },
+        Some(name) => {
+            let Some(metal) = Metal::from_name(name) else {
+                let known: Vec<String> = Metal::ALL
+                    .iter()
+                    .map(|m| format!("`{}`", m.name()))
+                    .collect();
+                return err(
+                    "metal",
+                    format!(
+                        "unknown metal `{name}`, expected one of {}",
+                        known.join(", ")
+                    ),
+                );
+            };
+            if s.ior.is_some() {
+                return err(
+                    "ior",
+                    "a metal has no `ior` (its F0 is its colour)".to_string(),
+                );
+            }
+            for (name, given) in [("albedo", s.albedo.is_some()), ("kd", s.kd.is_some())] {
+                if given {
+                    return err(
+                        name,
+                        format!("a metal has no diffuse lobe: remove `{name}`"),
+                    );
+                }
+            }
+            Surface::Metal(metal)
+        }
+    };
+    let is_metal = s.metal.is_some();
+    let missing = |name: &str| Err(place.error(&key(name), format!("missing key `{name}`")));
+    let (albedo, kd) = match (s.albedo, s.kd) {
+        (Some(a), Some(kd)) => (rgb(a), narrow(kd)),
+        _ if is_metal => (LinearRgb::new(0.0, 0.0, 0.0), 0.0),
+        (None, _) => return missing("albedo"),
+        (_, None) => return missing("kd"),
+    };
+    let mut more_lobes = [Lobe::NONE; MORE_LOBES];
+    let (ks, shininess) = match &s.lobes {
+        Some(lobes) => {
+            for name in ["ks", "shininess"] {
+                let given = if name == "ks" {
+                    s.ks.is_some()
+                } else {
+                    s.shininess.is_some()
+                };
+                if given {
+                    return err(
+                        name,
+                        format!("`{name}` and `lobes` both given: `lobes[0]` is the first lobe"),
+                    );
+                }
+            }
+            let Some(first) = lobes.first() else {
+                return err("lobes", "`lobes` is empty: give 1 to 3 lobes".to_string());
+            };
+            if lobes.len() > 1 + MORE_LOBES {
+                return err(
+                    &format!("lobes[{}]", 1 + MORE_LOBES),
+                    format!("at most {} lobes", 1 + MORE_LOBES),
+                );
+            }
+            for (slot, l) in more_lobes.iter_mut().zip(&lobes[1..]) {
+                *slot = Lobe {
+                    weight: narrow(l.weight),
+                    shininess: narrow(l.shininess),
+                };
+            }
+            (narrow(first.weight), narrow(first.shininess))
+        }
+        None => match (s.ks, s.shininess) {
+            (Some(ks), Some(n)) => (narrow(ks), narrow(n)),
+            _ if s.model == RawModel::Lambert => (0.0, 1.0),
+            (None, _) => return missing("ks"),
+            (_, None) => return missing("shininess"),
+        },
+    };
+    let spec = Specular {
+        surface,
+        more_lobes,
+    };
+    let model = match s.model {
+        RawModel::Phong => Model::Phong,
+        RawModel::BlinnPhong => Model::BlinnPhong,
+        RawModel::Lambert => Model::Lambert,
+        RawModel::NormalizedPhong => Model::NormalizedPhong(spec),
+        RawModel::NormalizedBlinnPhong => Model::NormalizedBlinnPhong(spec),
+    };
+    Ok(Material {
+        albedo,
+        kd,
+        ks,
+        shininess,
+        model,
+    })
 }
 
 /// A light from its table, checking that its keys fit its `type`.
@@ -388,7 +542,35 @@ fn light(l: &RawLight, i: usize, place: &Placer<'_>) -> Result<Light, SceneFileE
 /// The built-in exponent series ([`shadeline::exponent_series`]) in a [`FileScene`], at its
 /// scene file's size.
 pub fn builtin_scene() -> Result<SceneFile, SceneError> {
-    let small = shadeline::exponent_series()?;
+    to_file_scene(
+        &shadeline::exponent_series()?,
+        shadeline::EXPONENT_SERIES_SIZE,
+    )
+}
+
+/// The names [`preset`] knows.
+pub const PRESETS: [&str; 2] = ["exponent-series", "materials"];
+
+/// A built-in scene by name (see [`PRESETS`]) in a [`FileScene`], at its scene file's size:
+/// `exponent-series` ([`shadeline::exponent_series`]) or `materials`
+/// ([`shadeline::materials`]).
+pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
+    match name {
+        "exponent-series" => Some(
+            shadeline::exponent_series()
+                .and_then(|s| to_file_scene(&s, shadeline::EXPONENT_SERIES_SIZE)),
+        ),
+        "materials" => {
+            Some(shadeline::materials().and_then(|s| to_file_scene(&s, shadeline::MATERIALS_SIZE)))
+        }
+        _ => None,
+    }
+}
+
+fn to_file_scene<const S: usize, const L: usize>(
+    small: &Scene<S, L>,
+    (width, height): (u32, u32),
+) -> Result<SceneFile, SceneError> {
     let mut scene = FileScene::new(*small.camera(), small.background())?;
     for light in small.lights() {
         scene.add_light(*light)?;
@@ -396,7 +578,6 @@ pub fn builtin_scene() -> Result<SceneFile, SceneError> {
     for sphere in small.spheres() {
         scene.add_sphere(*sphere)?;
     }
-    let (width, height) = shadeline::EXPONENT_SERIES_SIZE;
     Ok(SceneFile {
         scene,
         width,
