@@ -52,6 +52,8 @@
 #![deny(missing_docs)]
 
 pub mod brdf;
+#[cfg(feature = "embedded-graphics")]
+pub mod eg;
 pub mod encoding;
 pub mod fixed;
 mod float_kernel;

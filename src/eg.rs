@@ -1,0 +1,224 @@
+//! embedded-graphics support (feature `embedded-graphics`): draw a prepared frame into any
+//! [`DrawTarget`], such as a `mipidsi` display, with few and large transfers.
+//!
+//! [`Drawing`] is a [`Drawable`] for any [`Render`] (every path, with its
+//! [`Encoding`](crate::Encoding)). It draws row by row:
+//!
+//! - a row the spheres may touch ([`Render::row_coverage`] is `Some`) is one
+//!   [`fill_contiguous`](DrawTarget::fill_contiguous) over the full-width one-row rectangle;
+//! - a row of pure background that encodes to one colour is one
+//!   [`fill_solid`](DrawTarget::fill_solid) over the same rectangle (a dithered background
+//!   that is not exactly a level varies along the row and takes the contiguous fill instead).
+//!
+//! So a display driver gets one window command and one long pixel stream per row, and
+//! background rows cost it no per-pixel iteration at all. Each pixel equals what
+//! [`Render::render_line`] gives for the matching shadeline format, converted exactly:
+//!
+//! | embedded-graphics colour | shadeline format | conversion |
+//! |---|---|---|
+//! | [`pixelcolor::Rgb565`] | [`Rgb565`](crate::Rgb565) | the 5/6/5 levels |
+//! | [`pixelcolor::Rgb888`] | [`Rgb888`](crate::Rgb888) | the 8-bit levels |
+//! | [`pixelcolor::Gray8`] | [`Gray8`](crate::Gray8) | the 8-bit luma |
+//!
+//! No allocation and no width limit: the colours handed to `fill_contiguous` come from an
+//! iterator that renders [`LINE_CHUNK`] pixels at a time into a stack buffer
+//! (`LINE_CHUNK × 3` bytes at most), so stack use does not grow with the width. Rows are
+//! rendered through [`Render::render_segment`], whose output does not depend on how a row is
+//! cut. The frame is drawn at [`Drawing::at`]'s offset (the origin by default); the target
+//! clips as embedded-graphics requires.
+//!
+//! ```
+//! use embedded_graphics_core::{pixelcolor::Rgb565, prelude::*, primitives::Rectangle};
+//! use shadeline::{eg::Drawing, exponent_series, Encoding, PreparedFixed, Render};
+//!
+//! # struct Display { pixels: [Rgb565; 64 * 48] }
+//! # impl OriginDimensions for Display { fn size(&self) -> Size { Size::new(64, 48) } }
+//! # impl DrawTarget for Display {
+//! #     type Color = Rgb565;
+//! #     type Error = core::convert::Infallible;
+//! #     fn draw_iter<I: IntoIterator<Item = Pixel<Rgb565>>>(&mut self, it: I) -> Result<(), Self::Error> {
+//! #         for Pixel(p, c) in it {
+//! #             if let (Ok(x), Ok(y)) = (usize::try_from(p.x), usize::try_from(p.y)) {
+//! #                 if x < 64 && y < 48 { self.pixels[y * 64 + x] = c; }
+//! #             }
+//! #         }
+//! #         Ok(())
+//! #     }
+//! # }
+//! # let mut display = Display { pixels: [Rgb565::BLACK; 64 * 48] };
+//! let frame = PreparedFixed::new(&exponent_series()?, 64, 48)?
+//!     .with_encoding(Encoding::LINEAR.dithered());
+//! Drawing::new(&frame).draw(&mut display)?; // `display`: any DrawTarget<Color = Rgb565>
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+
+use crate::pixel::BytePixel;
+use crate::render::{Render, LINE_CHUNK};
+use core::marker::PhantomData;
+use embedded_graphics_core::draw_target::DrawTarget;
+use embedded_graphics_core::geometry::{Point, Size};
+use embedded_graphics_core::pixelcolor::{self, PixelColor};
+use embedded_graphics_core::primitives::Rectangle;
+use embedded_graphics_core::Drawable;
+
+/// An embedded-graphics colour that a shadeline format converts to exactly.
+pub trait EgColor: PixelColor {
+    /// The shadeline format rendered for this colour.
+    type Pixel: BytePixel + PartialEq;
+    /// The colour of a rendered pixel (same levels, no rounding).
+    fn from_pixel(p: Self::Pixel) -> Self;
+}
+
+impl EgColor for pixelcolor::Rgb565 {
+    type Pixel = crate::Rgb565;
+    #[inline]
+    fn from_pixel(p: crate::Rgb565) -> Self {
+        let (r, g, b) = p.levels();
+        pixelcolor::Rgb565::new(r, g, b)
+    }
+}
+
+impl EgColor for pixelcolor::Rgb888 {
+    type Pixel = crate::Rgb888;
+    #[inline]
+    fn from_pixel(p: crate::Rgb888) -> Self {
+        pixelcolor::Rgb888::new(p.r, p.g, p.b)
+    }
+}
+
+impl EgColor for pixelcolor::Gray8 {
+    type Pixel = crate::Gray8;
+    #[inline]
+    fn from_pixel(p: crate::Gray8) -> Self {
+        pixelcolor::Gray8::new(p.0)
+    }
+}
+
+/// A prepared frame as an embedded-graphics [`Drawable`] of colour `C` (see the
+/// [module docs](self)). `C` is usually inferred from the target.
+#[derive(Debug)]
+pub struct Drawing<'a, R, C> {
+    frame: &'a R,
+    top_left: Point,
+    color: PhantomData<C>,
+}
+
+impl<R, C> Clone for Drawing<'_, R, C> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<R, C> Copy for Drawing<'_, R, C> {}
+
+impl<'a, R: Render, C: EgColor> Drawing<'a, R, C> {
+    /// Draws `frame` with its top-left pixel at the target's origin.
+    pub fn new(frame: &'a R) -> Self {
+        Drawing {
+            frame,
+            top_left: Point::zero(),
+            color: PhantomData,
+        }
+    }
+
+    /// Draws with the frame's top-left pixel at `top_left` (target coordinates, pixels).
+    pub fn at(self, top_left: Point) -> Self {
+        Drawing { top_left, ..self }
+    }
+
+    /// The colour of every pixel of background row `y`, if they are all the same (not the
+    /// case for a dithered background that is not exactly a level).
+    fn solid_background(&self, y: u32) -> Option<C> {
+        let mut px = [C::Pixel::default(); 4];
+        let n = (self.frame.width() as usize).min(4);
+        let px = px.get_mut(..n)?;
+        self.frame.render_segment(y, 0, px).ok()?;
+        let first = *px.first()?;
+        px.iter().all(|p| *p == first).then(|| C::from_pixel(first))
+    }
+}
+
+impl<R: Render, C: EgColor> Drawable for Drawing<'_, R, C> {
+    type Color = C;
+    type Output = ();
+
+    fn draw<D: DrawTarget<Color = C>>(&self, target: &mut D) -> Result<(), D::Error> {
+        let width = self.frame.width();
+        for y in 0..self.frame.height() {
+            let area = Rectangle::new(self.top_left + Point::new(0, y as i32), Size::new(width, 1));
+            if self.frame.row_coverage(y).is_none() {
+                if let Some(color) = self.solid_background(y) {
+                    target.fill_solid(&area, color)?;
+                    continue;
+                }
+            }
+            target.fill_contiguous(&area, RowColors::<R, C>::new(self.frame, y))?;
+        }
+        Ok(())
+    }
+}
+
+/// The colours of one row, rendered [`LINE_CHUNK`] pixels at a time on demand.
+struct RowColors<'a, R, C: EgColor> {
+    frame: &'a R,
+    y: u32,
+    /// First column of the next chunk.
+    next_x: u32,
+    chunk: [C::Pixel; LINE_CHUNK],
+    /// Pixels of `chunk` already handed out, and pixels it holds.
+    used: usize,
+    filled: usize,
+}
+
+impl<'a, R: Render, C: EgColor> RowColors<'a, R, C> {
+    fn new(frame: &'a R, y: u32) -> Self {
+        RowColors {
+            frame,
+            y,
+            next_x: 0,
+            chunk: [C::Pixel::default(); LINE_CHUNK],
+            used: 0,
+            filled: 0,
+        }
+    }
+
+    fn remaining(&self) -> usize {
+        (self.frame.width() - self.next_x) as usize + (self.filled - self.used)
+    }
+}
+
+impl<R: Render, C: EgColor> Iterator for RowColors<'_, R, C> {
+    type Item = C;
+
+    fn next(&mut self) -> Option<C> {
+        if self.used == self.filled {
+            let n = ((self.frame.width() - self.next_x) as usize).min(LINE_CHUNK);
+            if n == 0 {
+                return None;
+            }
+            let pixels = self.chunk.get_mut(..n)?;
+            // Cannot fail: the row and the segment are inside the frame. Were it to, the
+            // chunk would hold default pixels rather than stop the stream short.
+            if self
+                .frame
+                .render_segment(self.y, self.next_x, pixels)
+                .is_err()
+            {
+                pixels.fill(C::Pixel::default());
+            }
+            self.next_x += n as u32;
+            self.used = 0;
+            self.filled = n;
+        }
+        let p = *self.chunk.get(self.used)?;
+        self.used += 1;
+        Some(C::from_pixel(p))
+    }
+
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = self.remaining();
+        (n, Some(n))
+    }
+}
+
+impl<R: Render, C: EgColor> ExactSizeIterator for RowColors<'_, R, C> {}
