@@ -41,11 +41,54 @@
 //! An independent `f64` renderer, [`reference`](mod@reference), written straight from the formulas and
 //! sharing no code with the kernels, is what the paths are measured against.
 //!
+//! ## Output: formats, encodings, sinks
+//!
+//! Rows go into any [`Pixel`] format: [`Rgb888`], [`Rgb565`], [`Bgr565`], [`Gray8`] (Rec. 709
+//! luma), or [`LinearRgb`] and [`HitRecord`] for tests and tools. How linear colour becomes
+//! levels is the frame's [`Encoding`]: linear without dithering by default (the lesson's
+//! rule), or sRGB and/or 4×4 ordered dithering, chosen with [`Render::with_encoding`]; see
+//! [`encoding`] for the exact integer rule every path shares. Sinks:
+//!
+//! - [`Render::render_line`] / [`Render::render_frame`]: into `&mut [P]`;
+//! - [`Render::render_segment`]: any run of pixels of a row (tiles, partial updates);
+//! - [`Render::render_line_bytes`]: a row as the display's bytes (RGB565 big-endian for SPI
+//!   panels), ready for a DMA transfer;
+//! - `eg::Drawing` (feature `embedded-graphics`): a `Drawable` for any embedded-graphics
+//!   `DrawTarget`, one `fill_contiguous` or `fill_solid` per row.
+//!
+//! A display loop with two line buffers, one shading while the other is sent:
+//!
+//! ```
+//! use shadeline::{exponent_series, Encoding, PreparedFixed, Render, Rgb565};
+//!
+//! let frame = PreparedFixed::new(&exponent_series()?, 320, 240)?
+//!     .with_encoding(Encoding::SRGB.dithered());
+//! let mut lines = [[0u8; 2 * 320]; 2];
+//! for y in 0..240 {
+//!     let line = &mut lines[y as usize % 2];
+//!     frame.render_line_bytes::<Rgb565>(y, line)?; // big-endian RGB565
+//!     // start_dma(line); the other buffer is free for row y + 1
+//! }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! ## Feature flags
+//!
+//! | feature | default | what it adds |
+//! |---|---|---|
+//! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Rgb888`, `Gray8`) |
+//!
+//! ## Targets and MSRV
+//!
+//! `#![no_std]`, no allocation, `#![forbid(unsafe_code)]`; Rust 1.93 or later (the `fixed`
+//! crate's MSRV). Built in CI for `thumbv6m-none-eabi` (Cortex-M0), `thumbv7em-none-eabihf`
+//! (Cortex-M4F/M7) and `riscv32imac-unknown-none-elf`, and tested on x86-64 (SSE2 and AVX2).
+//!
 //! ## Layout
 //!
 //! [`scene`] (what the caller describes) → [`prepare`] (per-frame constants) → [`render`]
 //! (the row driver, with [`spans`]) → `float_kernel` (the per-pixel stages, over [`lane`]) →
-//! [`pixel`] (encode). The formulas live in [`brdf`].
+//! [`pixel`] and [`encoding`] (encode). The formulas live in [`brdf`].
 
 #![no_std]
 #![forbid(unsafe_code)]
