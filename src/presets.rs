@@ -65,7 +65,7 @@ pub const MATERIALS_SIZE: (u32, u32) = (768, 432);
 /// the reflection tinted by the metal's `F₀`, whitening toward grazing angles), and a blue
 /// multi-lobe lacquer (one diffuse lobe and three specular lobes, `n` = 800, 60 and 8).
 /// Bottom row: the exponent series under normalized Phong, `kd = ks = 0.5` and
-/// `n` = 3, 10, 30, 100, 300: unlike the classic series, the highlight dims as it widens.
+/// `n` = 2, 10, 50, 250, 1250, as in the classic series: unlike it, the highlight dims as it widens.
 /// Every material is energy conserving ([`Material::is_energy_conserving`]). The same
 /// numbers are in `scenes/materials.toml`.
 pub fn materials() -> Result<Scene<16, 4>, SceneError> {
@@ -137,7 +137,7 @@ pub fn materials() -> Result<Scene<16, 4>, SceneError> {
             material,
         })?;
     }
-    for (x, n) in columns.into_iter().zip([3.0, 10.0, 30.0, 100.0, 300.0]) {
+    for (x, n) in columns.into_iter().zip([2.0, 10.0, 50.0, 250.0, 1250.0]) {
         scene.add_sphere(Sphere {
             center: Vec3::new(x, -1.1, 0.0),
             radius: 0.95,
