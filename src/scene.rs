@@ -9,9 +9,10 @@
 //!
 //! # Ranges
 //!
-//! Every number is finite, and bounded so that no intermediate in the float kernel can
-//! overflow into `inf`/`NaN` (squared distances stay below `1e13`, arriving light below
-//! `1e30`):
+//! Every number is finite and bounded, so that geometry never overflows (squared distances
+//! stay below `1e13`) and no `NaN` can arise: a point light's `1/r²` and its arriving light are
+//! capped (at `f32::MAX` and `1e30`), and the shaded colour saturates at `f32::MAX`, so a
+//! very bright pixel is huge but finite, never `inf`:
 //!
 //! | quantity | accepted |
 //! |---|---|
