@@ -327,14 +327,25 @@ impl<P: Pixel> Background<P> {
     }
 
     /// Fills `out`, whose first pixel is column `x`.
+    ///
+    /// The first pixels (one period of the pattern: 1, or 4 when dithering) are written one
+    /// by one, the rest by doubling copies of what is already there: `[P]::fill` is a loop
+    /// per element for 3-byte pixels, while a copy is a `memcpy`. The dither pattern has
+    /// period 4 and every copy lands a multiple of 4 pixels further on, so it stays in phase.
     #[inline(always)]
     pub(crate) fn fill(&self, out: &mut [P], x: usize) {
-        if self.dither {
-            for (px, x) in out.iter_mut().zip(x..) {
-                *px = self.at(x);
+        let period = if self.dither { 4 } else { 1 };
+        for (px, x) in out.iter_mut().zip(x..).take(period) {
+            *px = self.at(x);
+        }
+        let mut filled = period;
+        while filled < out.len() {
+            let (head, tail) = out.split_at_mut(filled);
+            let n = head.len().min(tail.len());
+            if let (Some(dst), Some(src)) = (tail.get_mut(..n), head.get(..n)) {
+                dst.copy_from_slice(src);
             }
-        } else {
-            out.fill(self.pixels[0]);
+            filled += n;
         }
     }
 }
