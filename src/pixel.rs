@@ -147,8 +147,33 @@ pub fn quantize(c: f32, max: f32) -> u16 {
     (c * max + 0.5) as u16
 }
 
+/// [`quantize`] per channel to the largest levels `max`: the `encode` of every format that
+/// stores levels.
+#[inline(always)]
+fn levels(c: &LinearRgb, max: [u16; 3]) -> [u16; 3] {
+    [
+        quantize(c.r, max[0] as f32),
+        quantize(c.g, max[1] as f32),
+        quantize(c.b, max[2] as f32),
+    ]
+}
+
+/// [`quantize_fixed`] per channel to the largest levels `max`: the `encode_fixed` of every
+/// format that stores levels.
+#[inline(always)]
+fn levels_fixed([r, g, b]: [u32; 3], max: [u16; 3]) -> [u16; 3] {
+    [
+        quantize_fixed(r, max[0] as u32),
+        quantize_fixed(g, max[1] as u32),
+        quantize_fixed(b, max[2] as u32),
+    ]
+}
+
+const RGB888_MAX: [u16; 3] = [255, 255, 255];
+const RGB565_MAX: [u16; 3] = [31, 63, 31];
+
 impl Pixel for Rgb888 {
-    const LEVELS: Option<[u16; 3]> = Some([255, 255, 255]);
+    const LEVELS: Option<[u16; 3]> = Some(RGB888_MAX);
     #[inline(always)]
     fn from_levels([r, g, b]: [u16; 3]) -> Self {
         Rgb888 {
@@ -159,20 +184,11 @@ impl Pixel for Rgb888 {
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Self::from_levels([
-            quantize(s.color.r, 255.0),
-            quantize(s.color.g, 255.0),
-            quantize(s.color.b, 255.0),
-        ])
+        Self::from_levels(levels(&s.color, RGB888_MAX))
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
-        let [r, g, b] = s.color;
-        Rgb888 {
-            r: quantize_fixed(r, 255) as u8,
-            g: quantize_fixed(g, 255) as u8,
-            b: quantize_fixed(b, 255) as u8,
-        }
+        Self::from_levels(levels_fixed(s.color, RGB888_MAX))
     }
 }
 
@@ -185,27 +201,18 @@ impl Rgb565 {
 }
 
 impl Pixel for Rgb565 {
-    const LEVELS: Option<[u16; 3]> = Some([31, 63, 31]);
+    const LEVELS: Option<[u16; 3]> = Some(RGB565_MAX);
     #[inline(always)]
     fn from_levels([r, g, b]: [u16; 3]) -> Self {
         Rgb565::pack(r, g, b)
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Rgb565::pack(
-            quantize(s.color.r, 31.0),
-            quantize(s.color.g, 63.0),
-            quantize(s.color.b, 31.0),
-        )
+        Self::from_levels(levels(&s.color, RGB565_MAX))
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
-        let [r, g, b] = s.color;
-        Rgb565::pack(
-            quantize_fixed(r, 31),
-            quantize_fixed(g, 63),
-            quantize_fixed(b, 31),
-        )
+        Self::from_levels(levels_fixed(s.color, RGB565_MAX))
     }
 }
 
@@ -234,27 +241,18 @@ impl Bgr565 {
 }
 
 impl Pixel for Bgr565 {
-    const LEVELS: Option<[u16; 3]> = Some([31, 63, 31]);
+    const LEVELS: Option<[u16; 3]> = Some(RGB565_MAX);
     #[inline(always)]
     fn from_levels([r, g, b]: [u16; 3]) -> Self {
         Bgr565::pack(r, g, b)
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Bgr565::pack(
-            quantize(s.color.r, 31.0),
-            quantize(s.color.g, 63.0),
-            quantize(s.color.b, 31.0),
-        )
+        Self::from_levels(levels(&s.color, RGB565_MAX))
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
-        let [r, g, b] = s.color;
-        Bgr565::pack(
-            quantize_fixed(r, 31),
-            quantize_fixed(g, 63),
-            quantize_fixed(b, 31),
-        )
+        Self::from_levels(levels_fixed(s.color, RGB565_MAX))
     }
 }
 
