@@ -350,6 +350,39 @@ impl<P: Pixel> Background<P> {
     }
 }
 
+/// The walk both row drivers share over the segment of a row that starts at column
+/// `seg_start` and fills `out`: the background everywhere outside the covered `runs` (sorted,
+/// disjoint), and `shade(first_column, pixels)` on each run's part inside the segment. Every
+/// slice is reached through `get_mut`, so nothing here can panic.
+#[inline(always)]
+pub(crate) fn walk_runs<P: Pixel>(
+    out: &mut [P],
+    seg_start: usize,
+    runs: &[Span],
+    background: &Background<P>,
+    mut shade: impl FnMut(usize, &mut [P]),
+) {
+    let seg_end = seg_start + out.len();
+    let mut x = seg_start;
+    for run in runs {
+        let start = (run.start as usize).max(seg_start);
+        let end = (run.end as usize).min(seg_end);
+        if start >= end {
+            continue;
+        }
+        if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
+            background.fill(gap, x);
+        }
+        x = end;
+        if let Some(run_pixels) = out.get_mut(start - seg_start..end - seg_start) {
+            shade(start, run_pixels);
+        }
+    }
+    if let Some(tail) = out.get_mut(x - seg_start..) {
+        background.fill(tail, x);
+    }
+}
+
 /// Checks a row request against an image size.
 pub(crate) fn check_line(y: u32, len: usize, width: u32, height: u32) -> Result<(), RenderError> {
     if y >= height {
@@ -445,22 +478,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         let spans = self.row_spans(y);
         let runs = merge_runs::<S>(&spans);
         let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
-        let (seg_start, seg_end) = (x as usize, x as usize + out.len());
-
-        let mut x = seg_start;
-        for run in &runs {
-            let start = (run.start as usize).max(seg_start);
-            let end = (run.end as usize).min(seg_end);
-            if start >= end {
-                continue;
-            }
-            if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
-                background.fill(gap, x);
-            }
-            x = end;
-            let Some(run_pixels) = out.get_mut(start - seg_start..end - seg_start) else {
-                continue;
-            };
+        walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             for (chunk_index, chunk) in run_pixels.chunks_mut(lanes).enumerate() {
                 let x0 = (start + chunk_index * lanes) as u32;
                 let x1 = x0 + chunk.len() as u32;
@@ -479,10 +497,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
                 let packet = self.shade_packet(&row, x0, &candidates, P::NEEDS_HITS);
                 store_packet(chunk, &packet, encoding, x0, y);
             }
-        }
-        if let Some(tail) = out.get_mut(x - seg_start..) {
-            background.fill(tail, x);
-        }
+        });
         Ok(())
     }
 }

@@ -1,8 +1,8 @@
 //! The row driver of the fixed path: [`Render`] for [`PreparedFixed`].
 //!
 //! Like the float driver: spans (here each sphere's prepared screen rectangle, so a row costs
-//! two comparisons per sphere), covered runs merged with the float path's own
-//! `merge_runs`, background filled outside them with one encoded pixel, the kernel inside.
+//! two comparisons per sphere), covered runs merged and walked with the float path's own
+//! `merge_runs` and `walk_runs` (background outside the runs, the kernel inside).
 //! Within a run the unnormalized primary direction advances by one integer addition per
 //! pixel (`2·step_x`), which is exactly the value `(2x + 1 − w)·step_x` would give: no
 //! rounding accumulates. Rows, pixels and slices are only reached through `get_mut` and
@@ -13,7 +13,9 @@ use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, pixel_from_codes, Encoding};
 use crate::pixel::{FixedShade, HitRecord, Pixel};
-use crate::render::{check_segment, coverage_of, merge_runs, Background, Render, RenderError};
+use crate::render::{
+    check_segment, coverage_of, merge_runs, walk_runs, Background, Render, RenderError,
+};
 use crate::spans::Span;
 use fixed::types::I16F48;
 
@@ -81,22 +83,7 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
             encode(self.background, HitRecord::default(), encoding, x, y)
         });
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
-        let (seg_start, seg_end) = (x as usize, x as usize + out.len());
-
-        let mut x = seg_start;
-        for run in &runs {
-            let start = (run.start as usize).max(seg_start);
-            let end = (run.end as usize).min(seg_end);
-            if start >= end {
-                continue;
-            }
-            if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
-                background.fill(gap, x);
-            }
-            x = end;
-            let Some(run_pixels) = out.get_mut(start - seg_start..end - seg_start) else {
-                continue;
-            };
+        walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             let mut dir = self.direction(start as u32, y);
             for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                 let shaded = ray(dir).and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS));
@@ -108,10 +95,7 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                     *c = I16F48::from_bits(c.to_bits().saturating_add(a));
                 }
             }
-        }
-        if let Some(tail) = out.get_mut(x - seg_start..) {
-            background.fill(tail, x);
-        }
+        });
         Ok(())
     }
 }
