@@ -90,6 +90,7 @@
 
 mod exact;
 mod kernel;
+mod mul;
 mod pow;
 mod prepare;
 mod roots;

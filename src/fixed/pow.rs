@@ -70,6 +70,14 @@ const SIXTH_F31: u64 = 357_913_941;
 const TWENTYFOURTH_F31: u64 = 89_478_485;
 
 use super::exact::Exact;
+use super::mul::{mul_iu, mul_uu};
+
+/// The product of two values held in `u64` that both fit 32 bits (every operand in this
+/// module does: the formats above bound them), exact.
+#[inline(always)]
+fn mul(a: u64, b: u64) -> u64 {
+    mul_uu(a as u32, b as u32)
+}
 
 /// `(1 − h)^n` in U1F31 (`1 << 31` is 1.0) for `h` in U3F61; 0 where `h ≥ 1` (cosine ≤ 0).
 #[inline]
@@ -85,7 +93,7 @@ pub(crate) fn lobe(h: u64, n: Exact) -> u32 {
     } else {
         neg_log2_table(h)
     };
-    let product = n.mantissa as u64 * g_mantissa as u64;
+    let product = mul_uu(n.mantissa, g_mantissa);
     match to_u6f26(product, n.exponent + g_exponent + 26) {
         Some(y) => exp2_neg(y),
         None => 0,
@@ -98,15 +106,15 @@ fn neg_log2_small(h: u64) -> (u32, i32) {
     let h32 = h >> 29; // U0F32, < 2²⁷
                        // (1 + h/2 + h²/3 + h³/4 + h⁴/5)/ln 2, Horner in U1F31.
     let mut p = FIFTH_F31;
-    p = QUARTER_F31 + ((h32 * p) >> 32);
-    p = THIRD_F31 + ((h32 * p) >> 32);
-    p = HALF_F31 + ((h32 * p) >> 32);
-    p = ONE_F31 + ((h32 * p) >> 32);
-    let q = (p * INV_LN2_F31) >> 31; // < 1.48·2³¹
-                                     // h ≈ top·2^(−29 − hz) with top its 32 leading bits.
+    p = QUARTER_F31 + (mul(h32, p) >> 32);
+    p = THIRD_F31 + (mul(h32, p) >> 32);
+    p = HALF_F31 + (mul(h32, p) >> 32);
+    p = ONE_F31 + (mul(h32, p) >> 32);
+    let q = mul(p, INV_LN2_F31) >> 31; // < 1.48·2³¹
+                                       // h ≈ top·2^(−29 − hz) with top its 32 leading bits.
     let hz = h.leading_zeros();
     let top = (h << hz) >> 32;
-    let g = top * q; // value g·2^(−60 − hz)
+    let g = mul(top, q); // value g·2^(−60 − hz)
     let gz = g.leading_zeros();
     (((g << gz) >> 32) as u32, -28 - gz as i32 - hz as i32)
 }
@@ -121,13 +129,14 @@ fn neg_log2_table(h: u64) -> (u32, i32) {
     let bin = ((xn >> 57) & 63) as usize;
     let (inv_m0, log2_m0) = LOG_TABLE.get(bin).copied().unwrap_or((1 << 31, 0));
     // δ = m/m₀ − 1 in [0, 2⁻⁶), signed F31 (rounding of 1/m₀ may make it −1 ulp).
-    let delta = ((m * inv_m0 as u64) >> 31) as i64 - ONE_F31 as i64;
-    // ln(1 + δ) = δ(1 − δ(1/2 − δ(1/3 − δ/4))).
-    let mut t = THIRD_F31 as i64 - ((delta * QUARTER_F31 as i64) >> 31);
-    t = HALF_F31 as i64 - ((delta * t) >> 31);
-    t = ONE_F31 as i64 - ((delta * t) >> 31);
-    let ln = (delta * t) >> 31;
-    let log2_1p = (ln * INV_LN2_F31 as i64) >> 31; // F31
+    let delta = (mul(m, inv_m0 as u64) >> 31) as i64 - ONE_F31 as i64;
+    // ln(1 + δ) = δ(1 − δ(1/2 − δ(1/3 − δ/4))); |δ| < 2²⁵ and 0 < t ≤ 2³¹ + 1.
+    let signed = |delta: i64, t: i64| mul_iu(delta as i32, t as u32);
+    let mut t = THIRD_F31 as i64 - (signed(delta, QUARTER_F31 as i64) >> 31);
+    t = HALF_F31 as i64 - (signed(delta, t) >> 31);
+    t = ONE_F31 as i64 - (signed(delta, t) >> 31);
+    let ln = signed(delta, t) >> 31;
+    let log2_1p = signed(ln, INV_LN2_F31 as i64) >> 31; // F31
     let log2_m = log2_m0 as i64 + 2 * log2_1p; // F32, in [0, 1)
     let g = (((xz as i64) - 2) << 32) - log2_m; // F32, > 0
     let g = g.max(1) as u64;
@@ -163,14 +172,14 @@ fn exp2_neg(y: u32) -> u32 {
     let f = y & 0x3ff_ffff;
     let bin = (f >> 20) as usize;
     let r = (f & 0xf_ffff) as u64; // F26, < 2⁻⁶
-    let a = ((r << 5) * LN2_F32) >> 32; // r·ln 2 in F31, < 0.011
+    let a = mul(r << 5, LN2_F32) >> 32; // r·ln 2 in F31, < 0.011
                                         // e^-a = 1 − a(1 − a(1/2 − a(1/6 − a/24))).
-    let mut t = SIXTH_F31 - ((a * TWENTYFOURTH_F31) >> 31);
-    t = HALF_F31 - ((a * t) >> 31);
-    t = ONE_F31 - ((a * t) >> 31);
-    let e = ONE_F31 - ((a * t) >> 31);
+    let mut t = SIXTH_F31 - (mul(a, TWENTYFOURTH_F31) >> 31);
+    t = HALF_F31 - (mul(a, t) >> 31);
+    t = ONE_F31 - (mul(a, t) >> 31);
+    let e = ONE_F31 - (mul(a, t) >> 31);
     let base = EXP_TABLE.get(bin).copied().unwrap_or(0) as u64;
-    let v = (base * e + (1 << 30)) >> 31; // ≤ 2³¹
+    let v = (mul(base, e) + (1 << 30)) >> 31; // ≤ 2³¹
     let v = if k == 0 { v } else { (v + (1 << (k - 1))) >> k };
     v.min(ONE_F31) as u32
 }

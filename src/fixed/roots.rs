@@ -16,6 +16,8 @@
 //! reciprocal. Measured (tests below): relative error below `3·2⁻³¹` over the whole `u64`
 //! range for `inv_sqrt`, below `4·2⁻³¹` for `sqrt`.
 
+use super::mul::mul_uu;
+
 /// Entries of the table: one per top-8-bit pattern `64..=255` of a value in `[1, 4)` (U2F30).
 const BINS: usize = 192;
 
@@ -61,7 +63,7 @@ pub(crate) fn sqrt(x: u64) -> u64 {
     let (u, half_shift) = top_bits(x);
     let y = refine(u, initial(u));
     // √u = u·(1/√u): U2F30 × U1F31 = F61, down to F31: √u·2³¹ in [2³¹, 2³²).
-    let root = (u as u64 * y as u64) >> 30;
+    let root = mul_uu(u, y) >> 30;
     // x·2^(2·half_shift) ≈ u·2³² with u = √u-value²·2³⁰, so √x = (√u-value·2³¹)·2^-half_shift.
     root >> half_shift
 }
@@ -85,16 +87,19 @@ fn initial(u: u32) -> u32 {
 /// Two Newton steps for `1/√u`: `y ← y·(3 − u·y²)/2`, all U1F31 / U2F30 in `u64`.
 #[inline(always)]
 fn refine(u: u32, y0: u32) -> u32 {
-    let u = u as u64;
-    let mut y = y0 as u64;
+    let mut y = y0;
     for _ in 0..2 {
-        let y2 = (y * y) >> 31; // U1F31, ≤ 2³¹
-        let uy2 = (u * y2) >> 30; // F31, ≈ 2³¹
-        let t = (3u64 << 31).saturating_sub(uy2); // F31, ≈ 2³²
-        y = (y * t) >> 32; // y·t/2 in F31
+        // Every product has two 32-bit operands: y ≤ 2³¹, y² ≤ 2³¹, u < 2³².
+        let y2 = (mul_uu(y, y) >> 31) as u32; // U1F31, ≤ 2³¹
+        let uy2 = mul_uu(u, y2) >> 30; // F31, ≈ 2³¹
+        let t = (3u64 << 31).saturating_sub(uy2); // F31, ≈ 2³², below 2³³
+                                                  // y·t with t split at bit 32 (its high part is 0 or 1).
+        let high = if t >> 32 != 0 { (y as u64) << 32 } else { 0 };
+        let yt = mul_uu(y, t as u32) + high;
+        y = (yt >> 32).min(u32::MAX as u64) as u32; // y·t/2 in F31
     }
     // Newton for 1/√u approaches from below: y ≤ 2³¹ (value ≤ 1). The clamp is for the proof.
-    y.min(1 << 31) as u32
+    y.min(1 << 31)
 }
 
 #[cfg(test)]

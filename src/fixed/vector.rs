@@ -7,6 +7,7 @@
 //! wide products stay in `i64` and saturate, so no input can wrap, even outside the ranges
 //! the prepare step guarantees.
 
+use super::mul::{mul_ii, mul_iu, mul_uu};
 use fixed::types::{I16F16, I2F30};
 
 /// A length or coordinate in scaled scene units.
@@ -28,14 +29,14 @@ pub(crate) fn each3<T>(mut f: impl FnMut(usize) -> T) -> [T; 3] {
 /// `a·b` for a length vector and a unit vector, as raw I16F16 bits in `i64`.
 #[inline(always)]
 pub(crate) fn dot_len_unit(a: V3<Len>, b: V3<Unit>) -> i64 {
-    let [x, y, z] = each3(|i| a[i].wide_mul(b[i]).to_bits());
+    let [x, y, z] = each3(|i| mul_ii(a[i].to_bits(), b[i].to_bits()));
     x.saturating_add(y).saturating_add(z) >> 30
 }
 
 /// `a·b` for two unit vectors, as raw I2F30 bits in `i64`.
 #[inline(always)]
 pub(crate) fn dot_unit(a: V3<Unit>, b: V3<Unit>) -> i64 {
-    let [x, y, z] = each3(|i| a[i].wide_mul(b[i]).to_bits());
+    let [x, y, z] = each3(|i| mul_ii(a[i].to_bits(), b[i].to_bits()));
     x.saturating_add(y).saturating_add(z) >> 30
 }
 
@@ -43,16 +44,19 @@ pub(crate) fn dot_unit(a: V3<Unit>, b: V3<Unit>) -> i64 {
 #[inline(always)]
 pub(crate) fn length_sq(a: V3<i64>) -> i64 {
     let sq = |v: i64| {
-        let v = to_len(v);
-        v.wide_mul(v).to_bits()
+        let v = to_len(v).to_bits();
+        mul_ii(v, v)
     };
     sq(a[0]).saturating_add(sq(a[1])).saturating_add(sq(a[2]))
 }
 
 /// A raw I16F16 length (in `i64`) times a unit component: raw I16F16 bits in `i64`.
+///
+/// The length is clamped into I16F16 first; every length the kernel passes (`oc·d`, `t`,
+/// ε) is already within it, because the prepared scene lies within `±2¹³` units.
 #[inline(always)]
 pub(crate) fn len_times_unit(len: i64, u: Unit) -> i64 {
-    len.saturating_mul(u.to_bits() as i64) >> 30
+    mul_ii(to_len(len).to_bits(), u.to_bits()) >> 30
 }
 
 /// A raw `i64` clamped into an I16F16.
@@ -78,14 +82,16 @@ pub(crate) fn normalize(v: V3<i64>) -> Option<V3<Unit>> {
     } else {
         v.map(|c| c << (30 - bits))
     };
-    // |c| < 2³⁰ each, so the sum of squares is below 3·2⁶⁰.
+    // |c| < 2³⁰ each (so `as i32` is exact), and the sum of squares is below 3·2⁶⁰.
+    let c = c.map(|x| x as i32);
     let sum = c.iter().fold(0u64, |acc, &x| {
-        acc.saturating_add(x.unsigned_abs().saturating_mul(x.unsigned_abs()))
+        let m = x.unsigned_abs();
+        acc + mul_uu(m, m)
     });
     let (y, shift) = super::roots::inv_sqrt(sum)?;
     // c·y·2^-shift is the unit component; shift ≥ 31, so this is a right shift by ≥ 1.
     Some(c.map(|x| {
-        let u = x.saturating_mul(y as i64) >> (shift - 30).min(63);
+        let u = mul_iu(x, y) >> (shift - 30).min(63);
         Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
     }))
 }

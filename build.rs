@@ -1,0 +1,16 @@
+//! Tells the fixed path whether the target multiplies 32×32→64 bits in one instruction.
+//!
+//! ARMv6-M (Cortex-M0/M0+/M1, RP2040) and ARMv8-M Baseline (Cortex-M23) have only a
+//! 32×32→32 `MULS`: there a 64-bit product is a call to `__aeabi_lmul`, which multiplies two
+//! full 64-bit operands. `src/fixed/mul.rs` then builds its exact 32×32→64 products from four
+//! 16×16→32 `MULS` inline. Every other target (`SMULL`/`UMULL` on ARMv7-M, `MULH` on RV32IM,
+//! any 64-bit host) uses the plain widening product. Both give the same bits.
+
+fn main() {
+    println!("cargo::rustc-check-cfg=cfg(shadeline_short_mul)");
+    println!("cargo::rerun-if-env-changed=TARGET");
+    let target = std::env::var("TARGET").unwrap_or_default();
+    if target.starts_with("thumbv6m") || target.starts_with("thumbv8m.base") {
+        println!("cargo::rustc-cfg=shadeline_short_mul");
+    }
+}

@@ -1,0 +1,128 @@
+//! Exact 32×32→64-bit products, the fixed kernel's only multiplication.
+//!
+//! Every product the kernel forms has two operands that fit 32 bits (their formats bound
+//! them, see [`super`]'s table), so it never needs a 64×64 product, let alone an overflow-
+//! checked one. On targets with a widening multiply instruction these are the plain
+//! `i64`/`u64` products. On ARMv6-M and ARMv8-M Baseline (`cfg(shadeline_short_mul)`, set by
+//! the build script), whose only multiplier is 32×32→32, a 64-bit product is otherwise a call
+//! to `__aeabi_lmul` (a full 64×64 product, about 40 instructions with the call); here it is
+//! four 16×16→32 `MULS` and the carries between them, inline: about 20 instructions.
+//!
+//! Both forms are exact, so a frame is the same bits on every target
+//! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
+
+/// `a·b`, exact.
+#[inline(always)]
+pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
+    #[cfg(shadeline_short_mul)]
+    {
+        split_uu(a, b)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        a as u64 * b as u64
+    }
+}
+
+/// `a·b`, exact.
+#[inline(always)]
+pub(crate) fn mul_ii(a: i32, b: i32) -> i64 {
+    #[cfg(shadeline_short_mul)]
+    {
+        split_ii(a, b)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        a as i64 * b as i64
+    }
+}
+
+/// `a·b`, exact (`|a·b| < 2⁶³`).
+#[inline(always)]
+pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
+    #[cfg(shadeline_short_mul)]
+    {
+        split_iu(a, b)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        a as i64 * b as i64
+    }
+}
+
+/// `a·b` from four 16×16→32 products: `a = aₕ·2¹⁶ + aₗ`, likewise `b`.
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+fn split_uu(a: u32, b: u32) -> u64 {
+    let (al, ah) = (a & 0xffff, a >> 16);
+    let (bl, bh) = (b & 0xffff, b >> 16);
+    let low = al * bl;
+    let high = ah * bh;
+    // The two middle products each fit 32 bits; their sum may carry into bit 32 (2⁴⁸ overall).
+    let (mid, carry) = (ah * bl).overflowing_add(al * bh);
+    let (low, carry_low) = low.overflowing_add(mid << 16);
+    let high = high + (mid >> 16) + ((carry as u32) << 16) + carry_low as u32;
+    ((high as u64) << 32) | low as u64
+}
+
+/// Signed `a·b` from the unsigned product of the two's-complement bits: for a negative
+/// operand, subtract the other operand from the high word.
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+fn split_ii(a: i32, b: i32) -> i64 {
+    let p = split_uu(a as u32, b as u32);
+    let high = (p >> 32) as u32;
+    let high = high
+        .wrapping_sub(b as u32 & (a >> 31) as u32)
+        .wrapping_sub(a as u32 & (b >> 31) as u32);
+    (((high as u64) << 32) | (p & 0xffff_ffff)) as i64
+}
+
+/// Signed × unsigned: only `a`'s sign needs the correction.
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+fn split_iu(a: i32, b: u32) -> i64 {
+    let p = split_uu(a as u32, b);
+    let high = ((p >> 32) as u32).wrapping_sub(b & (a >> 31) as u32);
+    (((high as u64) << 32) | (p & 0xffff_ffff)) as i64
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A small xorshift generator: no dependency, the same numbers on every run.
+    fn numbers() -> impl Iterator<Item = u32> {
+        let edges = [
+            0,
+            1,
+            2,
+            0xffff,
+            0x1_0000,
+            0x7fff_ffff,
+            0x8000_0000,
+            0x8000_0001,
+            u32::MAX,
+        ];
+        let mut s = 0x9e37_79b9_7f4a_7c15u64;
+        let random = core::iter::repeat_with(move || {
+            s ^= s << 13;
+            s ^= s >> 7;
+            s ^= s << 17;
+            (s >> 16) as u32
+        });
+        edges.into_iter().chain(random.take(3000))
+    }
+
+    #[test]
+    fn split_products_are_exact() {
+        for a in numbers() {
+            for b in numbers().step_by(7) {
+                assert_eq!(split_uu(a, b), a as u64 * b as u64, "{a} × {b}");
+                let (sa, sb) = (a as i32, b as i32);
+                assert_eq!(split_ii(sa, sb), sa as i64 * sb as i64, "{sa} × {sb}");
+                assert_eq!(split_iu(sa, b), sa as i64 * b as i64, "{sa} × {b}");
+            }
+        }
+    }
+}
