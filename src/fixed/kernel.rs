@@ -19,6 +19,7 @@
 //! zero and take unsigned input. Nothing here can panic, in release or debug.
 
 use super::exact::shift_saturating;
+use super::mul::{mul_ii, mul_iu, mul_uu};
 use super::pow::lobe;
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
@@ -71,7 +72,8 @@ fn nearest_hit(oc: V3<Len>, dir: V3<Unit>, radius_sq: i64, eps: i64) -> Option<i
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
-    /// Shades pixel `x` of a row whose spans are `spans`, along the unit ray `d`.
+    /// Shades pixel `x` of a row whose spans are `spans`, along the unit ray `d`: `hit`,
+    /// `normal`, `lights`, `combine`.
     #[inline(always)]
     pub(crate) fn shade(
         &self,
@@ -82,32 +84,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     ) -> Option<Shaded> {
         let (index, sphere, t) = self.hit(d, x, spans)?;
         let (p, n) = self.normal(sphere, d, t);
-        let eps = self.epsilon.to_bits() as i64;
-        let shadow_origin: V3<Len> =
-            each3(|i| to_len(p[i].to_bits() as i64 + len_times_unit(eps, n[i])));
-
-        let mut diffuse = [0u32; 3];
-        let mut specular = [0u32; 3];
-        let mut shadowed = 0u32;
-        for (light_index, light) in self.lights.iter().enumerate() {
-            let incoming = self.lights(light, p);
-            if self.shadow(shadow_origin, &incoming) {
-                if record_hits && light_index < 32 {
-                    shadowed |= 1 << light_index;
-                }
-                continue;
-            }
-            if sphere.normalized {
-                let (dif, spec) = self.normalized(sphere, n, d, &incoming);
-                add(&mut diffuse, dif);
-                add(&mut specular, spec);
-            } else {
-                add(&mut diffuse, self.diffuse(n, &incoming));
-                add(&mut specular, self.specular(sphere, n, d, &incoming));
-            }
-        }
+        let (diffuse, specular, shadowed) = self.lights(index, sphere, p, n, d, record_hits);
         Some(Shaded {
-            color: self.encode(sphere, diffuse, specular),
+            color: self.combine(sphere, diffuse, specular),
             hit: HitRecord {
                 sphere: Some(index as u16),
                 shadowed,
@@ -145,18 +124,61 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let p = each3(|i| to_len(self.eye[i].to_bits() as i64 + step[i]));
         let (y, shift) = s.inv_radius;
         let n = each3(|i| {
-            // (P − C) from the offset, not from the rounded P: one rounding fewer.
-            let pc = s.eye_offset[i].to_bits() as i64 + step[i];
-            let v = pc.saturating_mul(y as i64) >> (shift - 30).min(63);
+            // (P − C) from the offset, not from the rounded P: one rounding fewer. It is
+            // within a radius of the centre, so it fits I16F16.
+            let pc = to_len(s.eye_offset[i].to_bits() as i64 + step[i]).to_bits();
+            let v = mul_iu(pc, y) >> (shift - 30).min(63);
             Unit::from_bits(v.clamp(-(1 << 31), (1 << 31) - 1) as i32)
         });
         (p, n)
     }
 
-    /// Direction toward the light, arriving colour and shadow-ray length at `p`.
+    /// Every light's `incoming`, `shadow`, `diffuse` and `specular` at the surface point
+    /// `p` of sphere `index` with normal `n`: the sums `Σ vis·I·diffuse` and
+    /// `Σ vis·I·specular` (U16F16 per channel, saturating), and, if `record_hits`, the bits
+    /// of the lights that are blocked.
     #[inline(always)]
-    /// (The `lights` stage, for one light: the float kernel's name.)
-    fn lights(&self, light: &FixedLight, p: V3<Len>) -> Incoming {
+    fn lights(
+        &self,
+        index: usize,
+        sphere: &FixedSphere,
+        p: V3<Len>,
+        n: V3<Unit>,
+        d: V3<Unit>,
+        record_hits: bool,
+    ) -> ([u32; 3], [u32; 3], u32) {
+        let eps = self.epsilon.to_bits() as i64;
+        let shadow_origin: V3<Len> =
+            each3(|i| to_len(p[i].to_bits() as i64 + len_times_unit(eps, n[i])));
+        let mut diffuse = [0u32; 3];
+        let mut specular = [0u32; 3];
+        let mut shadowed = 0u32;
+        for (light_index, light) in self.lights.iter().enumerate() {
+            let incoming = self.incoming(light, p);
+            let casters = self.casters(index, light_index);
+            if self.shadow(index, shadow_origin, &incoming, casters) {
+                if record_hits && light_index < 32 {
+                    shadowed |= 1 << light_index;
+                }
+                continue;
+            }
+            let (dif, spec) = if sphere.normalized {
+                self.normalized(sphere, n, d, &incoming)
+            } else {
+                (
+                    self.diffuse(n, &incoming),
+                    self.specular(sphere, n, d, &incoming),
+                )
+            };
+            add(&mut diffuse, dif);
+            add(&mut specular, spec);
+        }
+        (diffuse, specular, shadowed)
+    }
+
+    /// One light as seen from `p`: direction toward it, arriving colour, shadow-ray length.
+    #[inline(always)]
+    fn incoming(&self, light: &FixedLight, p: V3<Len>) -> Incoming {
         match *light {
             FixedLight::Distant { to_light, arriving } => Incoming {
                 to_light,
@@ -164,6 +186,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 reach: None,
             },
             FixedLight::Point { position, power } => {
+                // Both points lie within ±2¹³ units: the difference fits I16F16.
                 let lv = each3(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
                 let d2 = length_sq(lv).max(0) as u64;
                 let Some((y, shift)) = inv_sqrt(d2) else {
@@ -175,14 +198,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     };
                 };
                 let to_light = lv.map(|c| {
-                    let u = c.saturating_mul(y as i64) >> (shift - 30).min(63);
+                    let u = mul_iu(to_len(c).to_bits(), y) >> (shift - 30).min(63);
                     Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
                 });
                 // 1/d² in units = y²·2^(63 − 2·shift) with y² in U1F31; arriving in U16F16.
-                let y2 = (y as u64 * y as u64) >> 31;
+                let y2 = (mul_uu(y, y) >> 31) as u32;
                 let e = 79 - 2 * shift as i32;
                 let arriving =
-                    power.map(|pw| shift_saturating(pw.mantissa as u64 * y2, pw.exponent + e));
+                    power.map(|pw| shift_saturating(mul_uu(pw.mantissa, y2), pw.exponent + e));
                 Incoming {
                     to_light,
                     arriving,
@@ -192,56 +215,71 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
-    /// Whether any sphere blocks the ray from `origin` toward the light before it arrives.
+    /// The spheres that can block light `light` from reaching sphere `index` (bit `k` for
+    /// sphere `k`; spheres from index 32 on are always tested), prepared per frame.
     #[inline(always)]
-    fn shadow(&self, origin: V3<Len>, incoming: &Incoming) -> bool {
+    fn casters(&self, index: usize, light: usize) -> u32 {
+        self.casters
+            .get(index)
+            .and_then(|c| c.get(light))
+            .copied()
+            .unwrap_or(u32::MAX)
+    }
+
+    /// Whether any sphere blocks the ray from `origin` (on sphere `index`, lifted by ε
+    /// along the normal) toward the light before it arrives.
+    ///
+    /// Only the sphere itself and its prepared `casters` can (see [`super::prepare`]). The
+    /// sphere itself cannot when the ray leaves its surface outward (`(origin − C)·L ≥ 0`):
+    /// then the far root lies behind the origin, so its test is only made when it can hit.
+    #[inline(always)]
+    fn shadow(&self, index: usize, origin: V3<Len>, incoming: &Incoming, casters: u32) -> bool {
         let eps = self.epsilon.to_bits() as i64;
-        self.spheres.iter().any(|s| {
+        let blocks = |s: &FixedSphere| {
             let oc = each3(|i| to_len(origin[i].to_bits() as i64 - s.center[i].to_bits() as i64));
             nearest_hit(oc, incoming.to_light, s.radius_sq.to_bits(), eps)
                 .is_some_and(|t| incoming.reach.is_none_or(|reach| t < reach))
-        })
+        };
+        if let Some(own) = self.spheres.get(index) {
+            let oc = each3(|i| to_len(origin[i].to_bits() as i64 - own.center[i].to_bits() as i64));
+            if dot_len_unit(oc, incoming.to_light) < 0 {
+                if blocks(own) {
+                    return true;
+                }
+            } else {
+                debug_assert!(!blocks(own), "a ray leaving its own sphere hit it");
+            }
+        }
+        self.spheres
+            .iter()
+            .enumerate()
+            .any(|(k, s)| k != index && (k >= 32 || casters & (1 << k) != 0) && blocks(s))
     }
 
     /// `I·max(0, N·L)` per channel, U16F16.
     #[inline(always)]
     fn diffuse(&self, n: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
-        let n_dot_l = dot_unit(n, incoming.to_light).max(0) as u64; // U2F30
+        let n_dot_l = dot_unit(n, incoming.to_light).clamp(0, u32::MAX as i64) as u32; // U2F30
         incoming
             .arriving
-            .map(|i| u32::try_from((i as u64 * n_dot_l) >> 30).unwrap_or(u32::MAX))
+            .map(|i| u32::try_from(mul_uu(i, n_dot_l) >> 30).unwrap_or(u32::MAX))
     }
 
     /// `I·lobe` per channel, U16F16, with the lobe's `h = 1 − cos` from a sum of squares.
     #[inline(always)]
     fn specular(&self, s: &FixedSphere, n: V3<Unit>, d: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
         let l = incoming.to_light;
-        // u = R − V (Phong, R = −L + 2(N·L)N, V = −d) or N − H (Blinn-Phong), raw F30 in i64.
-        let u: V3<i64> = if s.blinn {
-            let half = each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64);
-            let Some(h) = normalize(half) else {
-                return [0; 3];
-            };
-            each3(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64)
-        } else {
-            if l == [Unit::ZERO; 3] {
-                return [0; 3];
-            }
-            let n_dot_l = dot_unit(n, l);
-            each3(|i| {
-                let r = ((2 * n_dot_l).saturating_mul(n[i].to_bits() as i64) >> 30)
-                    - l[i].to_bits() as i64;
-                r + d[i].to_bits() as i64
-            })
+        if !s.blinn && l == [Unit::ZERO; 3] {
+            return [0; 3];
+        }
+        let half = if s.blinn { half_vector(l, d) } else { None };
+        let Some(h) = lobe_h(s.blinn, n, l, d, half) else {
+            return [0; 3];
         };
-        // |u|² in F60 is ½|u|² in F61: h = 1 − cos, exact from the components.
-        let h = u.iter().fold(0u64, |acc, &c| {
-            acc.saturating_add(c.unsigned_abs().saturating_mul(c.unsigned_abs()))
-        });
-        let lobe = lobe(h, s.shininess) as u64; // U1F31
+        let lobe = lobe(h, s.shininess); // U1F31
         incoming
             .arriving
-            .map(|i| u32::try_from((i as u64 * lobe) >> 31).unwrap_or(u32::MAX))
+            .map(|i| u32::try_from(mul_uu(i, lobe) >> 31).unwrap_or(u32::MAX))
     }
 
     /// The normalized models' `diffuse` and `specular` terms, U16F16 per channel: the
@@ -256,88 +294,104 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         d: V3<Unit>,
         incoming: &Incoming,
     ) -> ([u32; 3], [u32; 3]) {
-        const ONE: u64 = 1 << 30;
+        const ONE: u32 = 1 << 30;
         let l = incoming.to_light;
-        let n_dot_l = dot_unit(n, l).clamp(0, ONE as i64) as u64; // U2F30
+        let n_dot_l = dot_unit(n, l).clamp(0, ONE as i64) as u32; // U2F30
         if n_dot_l == 0 || l == [Unit::ZERO; 3] {
             return ([0; 3], [0; 3]);
         }
-        // H = normalize(L + V), V = −d; needed by Blinn-Phong lobes and by Fresnel.
-        let half = (s.blinn || s.schlick)
-            .then(|| normalize(each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64)))
-            .flatten();
-        // u = R − V or N − H, raw F30; h = ½|u|² = 1 − cos in U3F61, as in `specular`.
-        let u: Option<V3<i64>> = if s.blinn {
-            half.map(|h| each3(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64))
-        } else {
-            let k = dot_unit(n, l);
-            Some(each3(|i| {
-                let r =
-                    ((2 * k).saturating_mul(n[i].to_bits() as i64) >> 30) - l[i].to_bits() as i64;
-                r + d[i].to_bits() as i64
-            }))
-        };
+        // H is needed by Blinn-Phong lobes and by Fresnel.
+        let half = (s.blinn || s.schlick).then(|| half_vector(l, d)).flatten();
         // Σ wₖcₖ·lobeₖ in U16F16.
         let mut sum = 0u32;
-        if let Some(u) = u {
-            let h = u.iter().fold(0u64, |acc, &c| {
-                acc.saturating_add(c.unsigned_abs().saturating_mul(c.unsigned_abs()))
-            });
+        if let Some(h) = lobe_h(s.blinn, n, l, d, half) {
             let exponents = [s.shininess, s.more_shininess[0], s.more_shininess[1]];
             for (w, e) in s.weight.iter().zip(exponents) {
                 if w.mantissa == 0 {
                     continue;
                 }
-                let lobe = lobe(h, e) as u64; // U1F31
-                                              // lobe·w as U16F16: (lobe·2⁻³¹)·(m·2^e)·2¹⁶.
-                let term = shift_saturating(lobe * w.mantissa as u64, w.exponent - 15);
+                // lobe·w as U16F16: (lobe·2⁻³¹)·(m·2^e)·2¹⁶.
+                let term = shift_saturating(mul_uu(lobe(h, e), w.mantissa), w.exponent - 15);
                 sum = sum.saturating_add(term);
             }
         }
         // Schlick: (1 − L·H)⁵ in U2F30.
         let weight5 = match half {
             Some(h) if s.schlick => {
-                let c = dot_unit(l, h).clamp(0, ONE as i64) as u64;
+                let c = dot_unit(l, h).clamp(0, ONE as i64) as u32;
                 let m = ONE - c;
-                let m2 = (m * m) >> 30;
-                (((m2 * m2) >> 30) * m) >> 30
+                let m2 = (mul_uu(m, m) >> 30) as u32;
+                let m4 = (mul_uu(m2, m2) >> 30) as u32;
+                (mul_uu(m4, m) >> 30) as u32
             }
             _ => 0,
         };
-        let f = s.f0.map(|f0| {
-            let f0 = f0 as u64;
-            f0 + (((ONE - f0) * weight5) >> 30)
-        });
+        // F ≤ F₀ + (1 − F₀) ≤ 1 (U2F30, ≤ 2³⁰).
+        let f =
+            s.f0.map(|f0| f0 + (mul_uu(ONE.saturating_sub(f0), weight5) >> 30) as u32);
         let diffuse_scale = if s.diffuse_loss {
             ONE - f[0].min(ONE)
         } else {
             ONE
         };
-        let lit = (n_dot_l * diffuse_scale) >> 30; // U2F30
-        let spec = (sum as u64 * n_dot_l) >> 30; // U16F16 (saturated below)
-        let spec = spec.min(u32::MAX as u64);
+        let lit = (mul_uu(n_dot_l, diffuse_scale) >> 30) as u32; // U2F30
+        let spec = (mul_uu(sum, n_dot_l) >> 30) as u32; // U16F16, ≤ sum
         let diffuse = incoming
             .arriving
-            .map(|i| u32::try_from((i as u64 * lit) >> 30).unwrap_or(u32::MAX));
+            .map(|i| u32::try_from(mul_uu(i, lit) >> 30).unwrap_or(u32::MAX));
         let specular = each3(|c| {
-            let t = ((spec * f[c]) >> 30).min(u32::MAX as u64);
-            let i = incoming.arriving[c] as u64;
-            u32::try_from(i.saturating_mul(t) >> 16).unwrap_or(u32::MAX)
+            let t = u32::try_from(mul_uu(spec, f[c]) >> 30).unwrap_or(u32::MAX);
+            u32::try_from(mul_uu(incoming.arriving[c], t) >> 16).unwrap_or(u32::MAX)
         });
         (diffuse, specular)
     }
 
-    /// `kd·albedo·diffuse + ks·specular` per channel, U16F16, saturating.
+    /// `combine`: `kd·albedo·diffuse + ks·specular` per channel, U16F16, saturating.
     #[inline(always)]
-    fn encode(&self, s: &FixedSphere, diffuse: [u32; 3], specular: [u32; 3]) -> [u32; 3] {
-        let ks = s.ks.to_bits() as u64;
+    fn combine(&self, s: &FixedSphere, diffuse: [u32; 3], specular: [u32; 3]) -> [u32; 3] {
+        let ks = s.ks.to_bits();
         each3(|c| {
-            let kd = s.kd_albedo[c].to_bits() as u64;
-            let a = (kd * diffuse[c] as u64) >> 16;
-            let b = (ks * specular[c] as u64) >> 16;
+            let a = mul_uu(s.kd_albedo[c].to_bits(), diffuse[c]) >> 16;
+            let b = mul_uu(ks, specular[c]) >> 16;
             u32::try_from(a.saturating_add(b)).unwrap_or(u32::MAX)
         })
     }
+}
+
+/// The half vector `H = normalize(L + V)`, `V = −d`; `None` where `L = −V`.
+#[inline(always)]
+fn half_vector(l: V3<Unit>, d: V3<Unit>) -> Option<V3<Unit>> {
+    normalize(each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64))
+}
+
+/// The lobe's `h = 1 − cos` in U3F61 from `u = R − V` (Phong: `R = 2(N·L)N − L`, `V = −d`)
+/// or `u = N − H` (Blinn-Phong; `None` without a half vector): for unit vectors
+/// `1 − cos = ½|u|²`, and `|u|²` of 30-bit fractions in F60 is `½|u|²` in F61, exact from
+/// the components, with full relative precision at the highlight.
+#[inline(always)]
+fn lobe_h(
+    blinn: bool,
+    n: V3<Unit>,
+    l: V3<Unit>,
+    d: V3<Unit>,
+    half: Option<V3<Unit>>,
+) -> Option<u64> {
+    let u: V3<i64> = if blinn {
+        let h = half?;
+        each3(|i| n[i].to_bits() as i64 - h[i].to_bits() as i64)
+    } else {
+        // |N·L| ≤ 1 (U2F30), so it fits i32; (2k·n) >> 30 is (k·n) >> 29.
+        let k = dot_unit(n, l).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+        each3(|i| {
+            let r = (mul_ii(k, n[i].to_bits()) >> 29) - l[i].to_bits() as i64;
+            r + d[i].to_bits() as i64
+        })
+    };
+    // Each component is within ±2 (F30, below 2³²).
+    Some(u.iter().fold(0u64, |acc, &c| {
+        let m = c.unsigned_abs().min(u32::MAX as u64) as u32;
+        acc.saturating_add(mul_uu(m, m))
+    }))
 }
 
 /// `acc += v` per channel, saturating.
