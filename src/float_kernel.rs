@@ -87,6 +87,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let mut shininess = one;
         let mut blinn = zero;
         let mut present = Present::default();
+        let mut hit_spheres = 0u32;
         for &k in candidates {
             let Some(s) = self.spheres.get(k as usize) else {
                 continue;
@@ -97,6 +98,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             if !W::Lane::any(hit) {
                 continue;
             }
+            // Spheres from 32 on are in no mask: their shadow test is never skipped.
+            hit_spheres |= 1u32.checked_shl(k as u32).unwrap_or(0);
             t_best = W::Lane::select(hit, t, t_best);
             id = W::Lane::select(hit, W::Lane::splat(k as f32), id);
             from_center = V::select(hit, offset, from_center);
@@ -160,6 +163,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             view,
             shadow_origin,
             any_hit,
+            hit_spheres,
         };
         let (diffuse, specular) = if present.normalized {
             self.lights::<true>(
@@ -216,6 +220,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             view,
             shadow_origin,
             any_hit,
+            hit_spheres,
         } = *surface;
         let present = Present {
             normalized: NORMALIZED,
@@ -255,9 +260,24 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 }
             };
 
-            // shadow: any sphere between P + ε·N and the light blocks it.
+            // shadow: any sphere between P + ε·N and the light blocks it. Only the spheres
+            // some lane hit, and those that can shadow them from this light, are tested.
+            let casters = self
+                .casters
+                .iter()
+                .enumerate()
+                .fold(hit_spheres, |m, (k, c)| {
+                    let hit = hit_spheres & 1u32.checked_shl(k as u32).unwrap_or(0) != 0;
+                    match c.get(light_index) {
+                        Some(c) if hit => m | c,
+                        _ => m,
+                    }
+                });
             let mut blocked = W::Lane::lt(one, zero);
-            for s in &self.spheres {
+            for (k, s) in self.spheres.iter().enumerate() {
+                if k < 32 && casters & (1 << k) == 0 {
+                    continue;
+                }
                 let oc = shadow_origin - V::splat(s.center);
                 let (t, hit, _) = nearest_hit(oc, to_light, W::Lane::splat(s.radius_sq), eps);
                 blocked = W::Lane::or(blocked, W::Lane::and(hit, t.lt(t_max)));
@@ -306,6 +326,8 @@ struct Surface<T: Lane> {
     view: Vec3<T>,
     shadow_origin: Vec3<T>,
     any_hit: T::Mask,
+    /// Bit `k`: some lane's nearest-so-far hit was sphere `k` (`k < 32`).
+    hit_spheres: u32,
 }
 
 /// The constants of lanes that hit nothing: no light is reflected (`kd·albedo = 0`,

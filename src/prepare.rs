@@ -121,6 +121,9 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     pub(crate) background: LinearRgb,
     pub(crate) spheres: heapless::Vec<PreparedSphere, S>,
     pub(crate) lights: heapless::Vec<PreparedLight, L>,
+    /// Per sphere and light, the other spheres that can shadow it
+    /// ([`Scene::shadow_casters`]).
+    pub(crate) casters: heapless::Vec<[u32; L], S>,
     pub(crate) use_spans: bool,
     _path: PhantomData<W>,
 }
@@ -180,6 +183,15 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             };
             let _ = lights.push(p);
         }
+        let mut casters = heapless::Vec::new();
+        for i in 0..scene.spheres().len() {
+            let mut per_light = [0u32; L];
+            for (mask, light) in per_light.iter_mut().zip(scene.lights()) {
+                *mask = scene.shadow_casters(i, light);
+            }
+            // Same capacity as the scene: cannot fail.
+            let _ = casters.push(per_light);
+        }
         Ok(Prepared {
             width,
             height,
@@ -195,6 +207,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             background: scene.background(),
             spheres,
             lights,
+            casters,
             use_spans: true,
             _path: PhantomData,
         })

@@ -730,6 +730,60 @@ impl<const S: usize, const L: usize> Scene<S, L> {
         &self.lights
     }
 
+    /// The spheres other than sphere `i` that can shadow any point of it from `light`: bit `j`
+    /// for sphere `j < 32` (the paths never leave out spheres from 32 on, nor sphere `i`).
+    ///
+    /// A shadow ray starts within `r + ε` of sphere `i`'s centre `C` and runs toward the light:
+    /// along the direction `u` to a distant light, or up to a point light at `P`. So every point
+    /// where it can be blocked lies within `r + ε` of the half-line `C + t·u, t ≥ 0`, or of the
+    /// segment `[C, P]`, and sphere `j` can block it only if its centre is within
+    /// `r + rⱼ + ε` of that half-line or segment. The test adds a margin of `4ε + 10⁻³(r + rⱼ)`,
+    /// far above the rounding of this `f32` test and of the paths' own hit tests, so leaving a
+    /// sphere out never changes a pixel (the golden and agreement tests render with the masks;
+    /// each path's own test is the same arithmetic as without them). A
+    /// number that is not finite keeps the sphere in. Both paths prepare these masks once per
+    /// frame, so a shadow ray tests the sphere it starts on and the masked spheres only.
+    // `!(a >= b)` on purpose: a NaN keeps the sphere (conservative).
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    pub(crate) fn shadow_casters(&self, i: usize, light: &Light) -> u32 {
+        let spheres = self.spheres();
+        let Some(own) = spheres.get(i) else {
+            return 0;
+        };
+        let eps = self.ray_epsilon();
+        let mut mask = 0u32;
+        for (j, other) in spheres.iter().enumerate().take(32) {
+            if j == i {
+                continue;
+            }
+            let v = other.center - own.center;
+            // The point of the half-line or segment closest to the other centre.
+            let closest = match *light {
+                Light::Distant { direction, .. } => {
+                    let u = (-direction).normalized().unwrap_or_default();
+                    u.scale(v.dot(u).max(0.0))
+                }
+                Light::Point { position, .. } => {
+                    let s = position - own.center;
+                    let ss = s.dot(s);
+                    let t = if ss > 0.0 {
+                        (v.dot(s) / ss).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    s.scale(t)
+                }
+            };
+            let w = v - closest;
+            let radii = own.radius + other.radius;
+            let reach = radii + eps + 4.0 * eps + 1.0e-3 * radii;
+            if !(w.dot(w) >= reach * reach) {
+                mask |= 1 << j;
+            }
+        }
+        mask
+    }
+
     /// The scene's ray epsilon, in scene units: primary and shadow hits closer than this are
     /// ignored, and shadow rays start this far out along the normal (the lesson's `bias`).
     ///

@@ -103,7 +103,8 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) background: [u32; 3],
     pub(crate) spheres: heapless::Vec<FixedSphere, S>,
     pub(crate) lights: heapless::Vec<FixedLight, L>,
-    /// Per sphere and light, the other spheres that can shadow it (see [`casters`]).
+    /// Per sphere and light, the other spheres that can shadow it
+    /// ([`Scene::shadow_casters`]).
     pub(crate) casters: heapless::Vec<[u32; L], S>,
     pub(crate) use_spans: bool,
 }
@@ -160,59 +161,6 @@ fn scale_log2<const S: usize, const L: usize>(scene: &Scene<S, L>) -> i32 {
     // extent = f·2^e with f in [½, 1): extent·2^(EXTENT_LOG2 − e) < 2^EXTENT_LOG2.
     let (_, e) = libm::frexpf(extent);
     (EXTENT_LOG2 - e).min(MAX_SCALE_LOG2)
-}
-
-/// The spheres other than sphere `i` that can shadow any point of it from `light`: bit `j`
-/// for sphere `j < 32` (the kernel tests spheres from 32 on, and sphere `i` itself, always).
-///
-/// A shadow ray starts within `r + ε` of sphere `i`'s centre `C` and runs toward the light:
-/// along the direction `u` to a distant light, or up to a point light at `P`. So every point
-/// where it can be blocked lies within `r + ε` of the half-line `C + t·u, t ≥ 0`, or of the
-/// segment `[C, P]`, and sphere `j` can block it only if its centre is within
-/// `r + rⱼ + ε` of that half-line or segment. The test adds a margin of `4ε + 10⁻³(r + rⱼ)`,
-/// far above the rounding of this `f32` test and of the kernel's fixed-point hit test, so
-/// leaving a sphere out never changes a pixel (`tests/fixed_golden.rs` and the agreement tests
-/// render with the masks; the kernel's own test is the same arithmetic as without them). A
-/// number that is not finite keeps the sphere in.
-// `!(a >= b)` on purpose: a NaN keeps the sphere (conservative).
-#[allow(clippy::neg_cmp_op_on_partial_ord)]
-fn casters_of<const S: usize, const L: usize>(scene: &Scene<S, L>, i: usize, light: &Light) -> u32 {
-    let spheres = scene.spheres();
-    let Some(own) = spheres.get(i) else {
-        return 0;
-    };
-    let eps = scene.ray_epsilon();
-    let mut mask = 0u32;
-    for (j, other) in spheres.iter().enumerate().take(32) {
-        if j == i {
-            continue;
-        }
-        let v = other.center - own.center;
-        // The point of the half-line or segment closest to the other centre.
-        let closest = match *light {
-            Light::Distant { direction, .. } => {
-                let u = (-direction).normalized().unwrap_or_default();
-                u.scale(v.dot(u).max(0.0))
-            }
-            Light::Point { position, .. } => {
-                let s = position - own.center;
-                let ss = s.dot(s);
-                let t = if ss > 0.0 {
-                    (v.dot(s) / ss).clamp(0.0, 1.0)
-                } else {
-                    0.0
-                };
-                s.scale(t)
-            }
-        };
-        let w = v - closest;
-        let radii = own.radius + other.radius;
-        let reach = radii + eps + 4.0 * eps + 1.0e-3 * radii;
-        if !(w.dot(w) >= reach * reach) {
-            mask |= 1 << j;
-        }
-    }
-    mask
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
@@ -346,7 +294,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         for i in 0..scene.spheres().len() {
             let mut per_light = [0u32; L];
             for (mask, light) in per_light.iter_mut().zip(scene.lights()) {
-                *mask = casters_of(scene, i, light);
+                *mask = scene.shadow_casters(i, light);
             }
             // Same capacity as the scene: cannot fail.
             let _ = casters.push(per_light);
