@@ -50,8 +50,8 @@
 //! these formulas in integers (see `src/fixed/mod.rs`), and the `f64`
 //! [`reference`](crate::reference) implements them again, independently.
 
-use crate::float_math::pow_clamped;
-use crate::lane::Lane;
+use crate::float::math::pow_clamped;
+use crate::float::Lane;
 use crate::scene::{Material, Model, Surface, MORE_LOBES};
 use crate::vec3::Vec3;
 use core::ops::{Add, Div, Mul, Neg, Sub};

@@ -54,7 +54,7 @@
 //! multiplications; the default's packet-wide `f32` quantization is unchanged.
 
 use crate::render::{Render, RenderError};
-use crate::spans::Span;
+use crate::runs::Span;
 use crate::Pixel;
 
 /// The transfer function applied to linear colour before quantizing.

@@ -86,9 +86,9 @@
 //!
 //! ## Layout
 //!
-//! [`scene`] (what the caller describes) → [`prepare`] (per-frame constants) → [`render`]
-//! (the row driver, with [`spans`]) → `float_kernel` (the per-pixel stages, over [`lane`]) →
-//! [`pixel`] and [`encoding`] (encode). The formulas live in [`brdf`].
+//! [`scene`] (what the caller describes) → [`brdf`] (the formulas) → the two paths,
+//! [`float`] and [`fixed`] (prepare, spans, row driver, kernel) → [`pixel`] and [`encoding`]
+//! (encode). [`render`] holds what every path offers, the [`Render`] trait.
 
 #![no_std]
 #![forbid(unsafe_code)]
@@ -99,29 +99,26 @@ pub mod brdf;
 pub mod eg;
 pub mod encoding;
 pub mod fixed;
-mod float_kernel;
-pub mod float_math;
-pub mod lane;
+pub mod float;
 pub mod pixel;
-pub mod prepare;
 pub mod presets;
 pub mod reference;
 pub mod render;
+mod runs;
 pub mod scene;
-pub mod spans;
 pub mod vec3;
 
 pub use encoding::{Encoded, Encoding, Transfer};
 pub use fixed::PreparedFixed;
+pub use float::{FloatPath, Prepared, Scalar, Simd4, Simd8};
 pub use pixel::{
     Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
 };
-pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
 pub use presets::{exponent_series, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE};
-pub use render::{Render, RenderError, LINE_CHUNK};
+pub use render::{Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
+pub use runs::Span;
 pub use scene::{
     Camera, Item, ItemKind, Light, Lobe, Material, Metal, Model, Problem, Scene, SceneError,
     Specular, Sphere, Surface, MORE_LOBES,
 };
-pub use spans::Span;
 pub use vec3::Vec3;

@@ -5,7 +5,7 @@
 //! product is summed in the same order, `(x·x' + y·y') + z·z'`, at every width — one of the
 //! reasons the scalar and SIMD paths agree bit for bit.
 
-use crate::lane::Lane;
+use crate::float::Lane;
 use core::ops::{Add, Mul, Neg, Sub};
 
 /// `2^64`: multiplying by it is exact for every vector `normalized` lifts.

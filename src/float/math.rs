@@ -25,7 +25,7 @@
 //! `y` itself is an `f32`: its last-bit rounding, `|y|·6e-8`, becomes a relative error of
 //! `|y|·4e-8` after `2^y`.
 
-use crate::lane::Lane;
+use super::lane::Lane;
 
 const SQRT_2: f32 = core::f32::consts::SQRT_2;
 /// `2 / ln 2`: turns `atanh` into `log2`.
