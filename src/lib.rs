@@ -102,6 +102,7 @@ pub mod fixed;
 pub mod float;
 pub mod pixel;
 pub mod presets;
+pub mod real;
 pub mod reference;
 pub mod render;
 mod runs;

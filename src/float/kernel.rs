@@ -34,6 +34,7 @@
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, PreparedLight, Row, MAX_ARRIVING};
 use crate::brdf::{self, Params, Present};
+use crate::real::Real;
 use crate::vec3::Vec3;
 
 /// A shaded packet: colour and hit record per lane.
@@ -200,7 +201,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         &self,
         d: Vec3<W::Lane>,
         hit: &Hit<W::Lane>,
-        any_hit: <W::Lane as Lane>::Mask,
+        any_hit: <W::Lane as Real>::Mask,
     ) -> Surface<W::Lane> {
         let one = W::Lane::splat(1.0);
         let p = Vec3::splat(self.eye) + d * hit.t;
@@ -266,7 +267,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         &self,
         surface: &Surface<W::Lane>,
         light: &Incoming<W::Lane>,
-    ) -> <W::Lane as Lane>::Mask {
+    ) -> <W::Lane as Real>::Mask {
         let eps = W::Lane::splat(self.epsilon);
         let mut blocked = W::Lane::lt(W::Lane::splat(1.0), W::Lane::splat(0.0));
         for s in &self.spheres {

@@ -10,7 +10,7 @@
 //! | `spans` | each sphere's analytic, conservative pixel span on a row |
 //! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
 //! | `kernel` | the per-pixel stages: `ray`, `hit`, `normal`, `lights` (`incoming`, `shadow`, `diffuse`, `specular`), `combine` |
-//! | `lane` | the lane trait: the operations only lanes have, each exactly specified |
+//! | `lane` | the lane trait: [`Real`](crate::real::Real) plus the operations only lanes have, each exactly specified |
 //! | `math` | the specular `pow`, identical at every width |
 //!
 //! Scalar and SIMD differ only in the lane type, and every operation the kernel uses has the
@@ -19,7 +19,7 @@
 
 mod kernel;
 mod lane;
-pub(crate) mod math;
+mod math;
 mod prepare;
 mod row;
 mod spans;
