@@ -11,7 +11,7 @@
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
 
-use crate::encoding::{Encoded, Encoding};
+use crate::encoding::Encoding;
 use crate::pixel::{BytePixel, Pixel};
 use crate::runs::Span;
 use crate::scene::Item;
@@ -27,7 +27,7 @@ pub const MAX_DIMENSION: u32 = 65_535;
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum RenderError {
-    /// A width or height of 0, or above [`MAX_DIMENSION`](crate::MAX_DIMENSION).
+    /// A width or height of 0, or above [`MAX_DIMENSION`].
     BadSize {
         /// The requested width.
         width: u32,
@@ -298,4 +298,64 @@ pub(crate) fn check_line(y: u32, len: usize, width: u32, height: u32) -> Result<
         });
     }
     Ok(())
+}
+
+/// A prepared frame together with the [`Encoding`] it renders with; built by
+/// [`Render::with_encoding`].
+///
+/// It implements [`Render`] (so [`render_line`](Render::render_line),
+/// [`render_frame`](Render::render_frame) and the byte and embedded-graphics sinks all use the
+/// encoding); the frame itself stays reachable with [`Encoded::frame`].
+///
+/// Why a wrapper and not a field of each path's prepared frame: the encoding is the same
+/// concern for every path, and the wrapper makes it one type that works with any [`Render`].
+#[derive(Clone, Debug)]
+pub struct Encoded<R> {
+    frame: R,
+    encoding: Encoding,
+}
+
+impl<R: Render> Encoded<R> {
+    /// `frame` rendering with `encoding`.
+    pub fn new(frame: R, encoding: Encoding) -> Self {
+        Encoded { frame, encoding }
+    }
+
+    /// The wrapped frame.
+    pub fn frame(&self) -> &R {
+        &self.frame
+    }
+
+    /// The wrapped frame, unwrapped.
+    pub fn into_frame(self) -> R {
+        self.frame
+    }
+}
+
+impl<R: Render> Render for Encoded<R> {
+    fn width(&self) -> u32 {
+        self.frame.width()
+    }
+
+    fn height(&self) -> u32 {
+        self.frame.height()
+    }
+
+    fn encoding(&self) -> Encoding {
+        self.encoding
+    }
+
+    fn render_segment_with<P: Pixel>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) -> Result<(), RenderError> {
+        self.frame.render_segment_with(y, x, out, encoding)
+    }
+
+    fn row_coverage(&self, y: u32) -> Option<Span> {
+        self.frame.row_coverage(y)
+    }
 }

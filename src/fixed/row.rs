@@ -11,8 +11,8 @@
 use super::kernel::ray;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
-use crate::encoding::{linear_code_fixed, pixel_from_codes, Encoding};
-use crate::pixel::{FixedShade, HitRecord, Pixel};
+use crate::encoding::{linear_code_fixed, Encoding};
+use crate::pixel::{pixel_from_codes, FixedShade, HitRecord, Pixel};
 use crate::render::{check_segment, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
 use fixed::types::I16F48;

@@ -96,7 +96,8 @@ pub fn pow_clamped<L: Lane>(x: L, n: L) -> L {
     L::select(positive, r, zero)
 }
 
-/// The lanes' power for [`crate::brdf`]: [`pow_clamped`], the same code at every width.
+/// The lanes' power for [`crate::brdf`]: this module's `pow_clamped`, the same code at every
+/// width.
 impl<T: Lane> Pow for T {
     #[inline(always)]
     fn pow_clamped(x: Self, n: Self) -> Self {

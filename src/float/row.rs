@@ -14,8 +14,8 @@
 use super::kernel::Packet;
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared};
-use crate::encoding::{linear_code, pixel_from_codes, Encoding};
-use crate::pixel::{HitRecord, LinearRgb, Pixel, Shade};
+use crate::encoding::{linear_code, luma, quantize_lanes, Encoding};
+use crate::pixel::{pixel_from_codes, HitRecord, LinearRgb, Pixel, Shade};
 use crate::render::{check_segment, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
 
@@ -85,14 +85,14 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
     }
 }
 
-/// The encode stage of the float paths: writes the first `chunk.len()` lanes of a packet
-/// whose first pixel is `(x0, y)`.
+/// `encode` for the float paths: writes the first `chunk.len()` lanes of a packet whose
+/// first pixel is `(x0, y)`.
 ///
-/// With [`Encoding::LINEAR`], formats with levels are quantized a packet at a time, with the
-/// rule of [`quantize`](crate::pixel::quantize) (clamp with NaN to 0, `c·max + ½`, truncate;
-/// [`Gray8`](crate::Gray8) on the luma), so every width stores the bits the scalar path stores.
-/// Other encodings compute the linear codes a packet at a time
-/// ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
+/// With [`Encoding::LINEAR`], formats with levels are quantized a packet at a time with
+/// [`quantize_lanes`], the rule of [`quantize`](crate::encoding::quantize) (clamp with NaN to
+/// 0, `c·max + ½`, truncate; [`Gray8`](crate::Gray8) on the [`luma`]), so every width stores
+/// the bits the scalar path stores. Other encodings compute the linear codes a packet at a
+/// time ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
 /// ([`crate::encoding`]).
 #[inline(always)]
 fn store_packet<P: Pixel, T: Lane>(
@@ -102,38 +102,28 @@ fn store_packet<P: Pixel, T: Lane>(
     x0: u32,
     y: u32,
 ) {
+    let c = packet.color;
     if let Some(max) = P::LEVELS {
-        let zero = T::splat(0.0);
-        let one = T::splat(1.0);
-        let half = T::splat(0.5);
-        let clamp = |c: T| {
-            let c = T::select(zero.lt(c), c, zero);
-            T::select(c.lt(one), c, one)
-        };
-        let quantize = |c: T, max: f32| (clamp(c) * T::splat(max) + half).trunc_lanes();
         if encoding.is_default() {
             if P::GRAY {
-                let [wr, wg, wb] = crate::encoding::LUMA_WEIGHTS_F32;
-                let luma = clamp(packet.color.x) * T::splat(wr)
-                    + clamp(packet.color.y) * T::splat(wg)
-                    + clamp(packet.color.z) * T::splat(wb);
-                let l = quantize(luma, max[0] as f32);
+                let l = quantize_lanes(luma([c.x, c.y, c.z]), max[0] as f32).trunc_lanes();
                 for (px, l) in chunk.iter_mut().zip(&l) {
                     *px = P::from_levels([*l as u16; 3]);
                 }
                 return;
             }
-            let r = quantize(packet.color.x, max[0] as f32);
-            let g = quantize(packet.color.y, max[1] as f32);
-            let b = quantize(packet.color.z, max[2] as f32);
+            let r = quantize_lanes(c.x, max[0] as f32).trunc_lanes();
+            let g = quantize_lanes(c.y, max[1] as f32).trunc_lanes();
+            let b = quantize_lanes(c.z, max[2] as f32).trunc_lanes();
             for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
                 *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
             }
             return;
         }
-        let r = quantize(packet.color.x, 65536.0);
-        let g = quantize(packet.color.y, 65536.0);
-        let b = quantize(packet.color.z, 65536.0);
+        // Linear codes, `⌊clamp(c)·65536 + ½⌋`, then the encoding's integer rule per pixel.
+        let r = quantize_lanes(c.x, 65536.0).trunc_lanes();
+        let g = quantize_lanes(c.y, 65536.0).trunc_lanes();
+        let b = quantize_lanes(c.z, 65536.0).trunc_lanes();
         let codes = r.iter().zip(&g).zip(&b);
         for ((px, ((r, g), b)), x) in chunk.iter_mut().zip(codes).zip(x0..) {
             if let Some(p) = pixel_from_codes([*r as u32, *g as u32, *b as u32], encoding, x, y) {
