@@ -150,3 +150,142 @@ pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Ve
     }
     merged
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::pixel::Gray8;
+
+    const S: usize = 8;
+
+    fn span(start: u32, end: u32) -> Option<Span> {
+        Some(Span { start, end })
+    }
+
+    fn runs(spans: &[Option<Span>]) -> heapless::Vec<(u32, u32), S> {
+        merge_runs::<S>(spans)
+            .iter()
+            .map(|s| (s.start, s.end))
+            .collect()
+    }
+
+    #[test]
+    fn merge_runs_of_an_empty_row() {
+        assert!(runs(&[]).is_empty());
+        assert!(runs(&[None, None, None]).is_empty());
+        assert_eq!(coverage_of(&[None, None]), None);
+    }
+
+    #[test]
+    fn merge_runs_sorts_and_joins_touching_and_overlapping_spans() {
+        // Disjoint, given out of order.
+        assert_eq!(runs(&[span(5, 7), None, span(0, 2)]), [(0, 2), (5, 7)]);
+        // Touching: [0, 3) and [3, 5) are one run.
+        assert_eq!(runs(&[span(3, 5), span(0, 3)]), [(0, 5)]);
+        // Overlapping, and one inside another.
+        assert_eq!(runs(&[span(1, 4), span(2, 6), span(2, 3)]), [(1, 6)]);
+        // A chain that only joins once sorted.
+        assert_eq!(
+            runs(&[span(6, 7), span(0, 2), span(4, 6), span(2, 3)]),
+            [(0, 3), (4, 7)]
+        );
+        assert_eq!(
+            coverage_of(&[span(4, 6), None, span(1, 2)]),
+            Some(Span { start: 1, end: 6 })
+        );
+    }
+
+    #[test]
+    fn merge_runs_at_both_ends_of_a_row() {
+        assert_eq!(runs(&[span(6, 7), span(0, 1)]), [(0, 1), (6, 7)]);
+        assert_eq!(runs(&[span(0, 7)]), [(0, 7)]);
+        assert_eq!(runs(&[span(0, 1)]), [(0, 1)]);
+    }
+
+    /// Walks `runs` over the segment `[seg_start, seg_start + len)` with background 0 and
+    /// shade writing `100 + x`; returns the pixels and the runs the shader saw.
+    fn walk(
+        len: usize,
+        seg_start: usize,
+        runs: &[Span],
+        dither: bool,
+    ) -> (heapless::Vec<u8, 16>, heapless::Vec<(usize, usize), 8>) {
+        let encoding = Encoding {
+            dither,
+            ..Encoding::LINEAR
+        };
+        let background = Background::new(encoding, |x| Gray8(x as u8));
+        let mut out = [Gray8(255); 16];
+        let out = &mut out[..len];
+        let mut seen = heapless::Vec::new();
+        walk_runs(out, seg_start, runs, &background, |x, px| {
+            let _ = seen.push((x, px.len()));
+            for (p, x) in px.iter_mut().zip(x..) {
+                *p = Gray8(100 + x as u8);
+            }
+        });
+        (out.iter().map(|p| p.0).collect(), seen)
+    }
+
+    fn s(start: u32, end: u32) -> Span {
+        Span { start, end }
+    }
+
+    #[test]
+    fn walk_runs_of_an_empty_row_is_all_background() {
+        for len in [1, 7] {
+            let (px, seen) = walk(len, 0, &[], false);
+            assert!(px.iter().all(|&p| p == 0), "width {len}");
+            assert!(seen.is_empty());
+        }
+    }
+
+    #[test]
+    fn walk_runs_at_width_1() {
+        let (px, seen) = walk(1, 0, &[s(0, 1)], false);
+        assert_eq!(px, [100]);
+        assert_eq!(seen, [(0, 1)]);
+        assert_eq!(walk(1, 0, &[], true).0, [0]);
+    }
+
+    #[test]
+    fn walk_runs_at_width_7_with_runs_at_both_ends() {
+        let (px, seen) = walk(7, 0, &[s(0, 2), s(5, 7)], false);
+        assert_eq!(px, [100, 101, 0, 0, 0, 105, 106]);
+        assert_eq!(seen, [(0, 2), (5, 2)]);
+        let (px, seen) = walk(7, 0, &[s(0, 7)], false);
+        assert_eq!(px, [100, 101, 102, 103, 104, 105, 106]);
+        assert_eq!(seen, [(0, 7)]);
+    }
+
+    #[test]
+    fn walk_runs_clips_runs_to_the_segment() {
+        // The segment is columns 3..7 of a row; runs reach outside it on both sides.
+        let (px, seen) = walk(4, 3, &[s(0, 4), s(6, 9)], false);
+        assert_eq!(px, [103, 0, 0, 106]);
+        assert_eq!(seen, [(3, 1), (6, 1)]);
+        // A run entirely outside the segment is skipped.
+        let (px, seen) = walk(2, 3, &[s(0, 2), s(6, 9)], false);
+        assert_eq!(px, [0, 0]);
+        assert!(seen.is_empty());
+    }
+
+    #[test]
+    fn background_fill_keeps_the_dither_phase() {
+        // Dithering: the background is `x mod 4`, whatever the first column and the length.
+        for len in [1, 7, 16] {
+            for seg_start in [0, 1, 3, 6] {
+                let (px, _) = walk(len, seg_start, &[], true);
+                for (i, p) in px.iter().enumerate() {
+                    assert_eq!(*p as usize, (seg_start + i) & 3, "len {len} at {seg_start}");
+                }
+            }
+        }
+        // A run in the middle: the gaps on both sides stay in phase.
+        let (px, _) = walk(7, 1, &[s(3, 4)], true);
+        assert_eq!(px, [1, 2, 103, 0, 1, 2, 3]);
+        // Without dithering one pixel is copied everywhere.
+        let (px, _) = walk(7, 2, &[], false);
+        assert!(px.iter().all(|&p| p == 0));
+    }
+}
