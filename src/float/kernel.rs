@@ -237,8 +237,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         };
         let masks = params.masks();
 
-        let mut diffuse = Vec3::splat(Vec3::default());
-        let mut specular = Vec3::splat(Vec3::default());
+        let mut diffuse_sum = Vec3::splat(Vec3::default());
+        let mut specular_sum = Vec3::splat(Vec3::default());
         for (light_index, light) in self.lights.iter().enumerate() {
             let light = incoming(light, surface.p);
             let blocked = self.shadow(surface, &light);
@@ -255,10 +255,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             let (n, view) = (surface.n, surface.view);
             let t = brdf::terms(params, &masks, present, n, light.to_light, view);
             let lit = W::Lane::select(visible, one, zero);
-            diffuse = accumulate_diffuse(diffuse, &light, t.diffuse, lit);
-            specular = accumulate_specular::<_, NORMALIZED>(specular, &light, t.specular, lit);
+            diffuse_sum = diffuse(diffuse_sum, &light, t.diffuse, lit);
+            specular_sum = specular::<_, NORMALIZED>(specular_sum, &light, t.specular, lit);
         }
-        (diffuse, specular)
+        (diffuse_sum, specular_sum)
     }
 
     /// `shadow`: the lanes where a sphere lies between `P + ε·N` and the light.
@@ -322,14 +322,14 @@ fn incoming<T: Lane>(light: &PreparedLight, p: Vec3<T>) -> Incoming<T> {
 /// `diffuse`: adds `vis·I·term` to the sum, `term` being [`brdf::Terms::diffuse`] and `lit`
 /// 1 on visible lanes, 0 elsewhere.
 #[inline(always)]
-fn accumulate_diffuse<T: Lane>(sum: Vec3<T>, light: &Incoming<T>, term: T, lit: T) -> Vec3<T> {
+fn diffuse<T: Lane>(sum: Vec3<T>, light: &Incoming<T>, term: T, lit: T) -> Vec3<T> {
     sum + light.arriving * (term * lit)
 }
 
 /// `specular`: adds `vis·I ⊙ term` to the sum, `term` being [`brdf::Terms::specular`]. Without
 /// a normalized material in the packet the lobe is the same in every channel.
 #[inline(always)]
-fn accumulate_specular<T: Lane, const NORMALIZED: bool>(
+fn specular<T: Lane, const NORMALIZED: bool>(
     sum: Vec3<T>,
     light: &Incoming<T>,
     term: Vec3<T>,

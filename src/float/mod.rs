@@ -24,5 +24,6 @@ mod prepare;
 mod row;
 mod spans;
 
+#[doc(hidden)]
 pub use lane::Lane;
 pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8};

@@ -9,7 +9,9 @@
 //!
 //! The lane width is a type parameter ([`Scalar`], [`Simd4`], [`Simd8`]) and changes only how
 //! many pixels one kernel call shades: the prepared numbers are the same at every width, which
-//! is half of why the paths agree bit for bit (the other half is [`crate::lane`]).
+//! is half of why the paths agree bit for bit (the other half is the lane trait, whose
+//! operations are all exactly specified: see `lane`). It also holds the per-row constants
+//! ([`Row`]) that the spans and the kernel's `ray` stage share.
 
 use super::lane::Lane;
 use crate::brdf::Params;
