@@ -327,6 +327,26 @@ impl Pixel for HitRecord {
     }
 }
 
+/// A pixel of a levels format from its linear codes, position and encoding
+/// ([`encode_levels`]); `None` for formats without levels.
+#[inline]
+pub(crate) fn pixel_from_codes<P: Pixel>(
+    codes: [u32; 3],
+    encoding: Encoding,
+    x: u32,
+    y: u32,
+) -> Option<P> {
+    let levels = P::LEVELS?;
+    Some(P::from_levels(encode_levels(
+        codes,
+        levels,
+        P::GRAY,
+        encoding,
+        x,
+        y,
+    )))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -366,24 +386,4 @@ mod tests {
         assert_eq!(px.0, 0xf81f); // red 11111, green 000000, blue 11111
         assert_eq!(px.levels(), (31, 0, 31));
     }
-}
-
-/// A pixel of a levels format from its linear codes, position and encoding
-/// ([`encode_levels`]); `None` for formats without levels.
-#[inline]
-pub(crate) fn pixel_from_codes<P: Pixel>(
-    codes: [u32; 3],
-    encoding: Encoding,
-    x: u32,
-    y: u32,
-) -> Option<P> {
-    let levels = P::LEVELS?;
-    Some(P::from_levels(encode_levels(
-        codes,
-        levels,
-        P::GRAY,
-        encoding,
-        x,
-        y,
-    )))
 }
