@@ -1,6 +1,7 @@
 //! The reflection models, in one place: every model as a function of the directions, written
-//! once over a small numeric trait ([`Real`]) so that the float kernel evaluates it on its
-//! lanes (`f32`, `f32x4`, `f32x8`) and the law tests (`tests/brdf_laws.rs`) on `f64`.
+//! once over [`Real`] and [`Vec3`] so that the float kernel evaluates it on its lanes (`f32`,
+//! `f32x4`, `f32x8`) and the law tests (`tests/brdf_laws.rs`) on `f64`. The kernel's helpers
+//! ([`terms`] and its flags) are public only for those tests and hidden from the docs.
 //!
 //! Notation: `N` the unit normal, `L` the unit vector toward the light (`ω_i`), `V` the unit
 //! vector toward the eye (`ω_o`), `R = 2(N·L)N − L` the light mirrored about the normal,
@@ -44,117 +45,29 @@
 //! frame by [`Params::of`] (in prepare, in `f32`; normalization factors and `F₀` folded in).
 //! Per light, [`terms`] returns the diffuse factor and the specular colour, times `cos θ_i`
 //! for the normalized models; the kernel accumulates `I·terms` and multiplies by
-//! `kd·albedo` and `ks` once per pixel. For the classic models [`terms`] is exactly the
-//! arithmetic the kernel has always done, so their output has not changed by a bit. [`value`]
-//! is `f` itself, from the same [`terms`], for the law tests. The fixed-point path mirrors
+//! `kd·albedo` and `ks` once per pixel. For the classic models [`terms`] computes only
+//! `max(0, N·L)` and the one lobe, nothing else. [`value`] is `f` itself, from the same
+//! [`terms`], for the law tests. The fixed-point path mirrors
 //! these formulas in integers (see `src/fixed/mod.rs`), and the `f64`
 //! [`reference`](crate::reference) implements them again, independently.
 
-use crate::float_math::pow_clamped;
-use crate::lane::Lane;
+use crate::real::Real;
 use crate::scene::{Material, Model, Surface, MORE_LOBES};
 use crate::vec3::Vec3;
-use core::ops::{Add, Div, Mul, Neg, Sub};
 
 /// Specular lobes per material: lobe 0 (`ks`, `shininess`) and [`MORE_LOBES`] more.
 pub const LOBES: usize = 1 + MORE_LOBES;
 
-/// The numbers the models are written in: the kernel's lanes ([`Lane`] types) and `f64`.
-///
-/// Every [`Lane`] type is a `Real` with the lane's own exact operations, and with the
-/// kernel's [`pow_clamped`]; `f64` uses `libm`'s correctly rounded `sqrt` and `pow`, which is
-/// what lets the law tests check reciprocity to `1e-6` even at `n = 10⁴`.
-pub trait Real:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
-    /// A per-lane boolean.
-    type Mask: Copy;
-    /// Every lane set to `v` (exact for `f64`).
-    fn splat(v: f32) -> Self;
-    /// π in this type's precision.
-    fn pi() -> Self;
-    /// Correctly rounded square root.
-    fn sqrt(self) -> Self;
-    /// Per-lane `self < rhs`.
-    fn lt(self, rhs: Self) -> Self::Mask;
-    /// Per-lane choice.
-    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
-    /// True if any lane of `mask` is set.
-    fn any(mask: Self::Mask) -> bool;
-    /// `max(0, x)^n` for `n > 0`, `x` clamped to at most 1: the lobe's power.
+/// The lobe's power `max(0, x)^n`, the one transcendental function the models need beyond
+/// [`Real`]: the float kernel's own, identical at every lane width, for the `f32` types, and
+/// `libm`'s correctly rounded `pow` for `f64`, which is what lets the law tests check
+/// reciprocity to `1e-6` even at `n = 10⁴`.
+pub trait Pow: Real {
+    /// `max(0, x)^n` for `n > 0`, `x` clamped to at most 1.
     fn pow_clamped(x: Self, n: Self) -> Self;
-    /// Per-lane maximum (`if self < rhs { rhs } else { self }`).
-    #[inline(always)]
-    fn max(self, rhs: Self) -> Self {
-        Self::select(self.lt(rhs), rhs, self)
-    }
 }
 
-impl<T: Lane> Real for T {
-    type Mask = <T as Lane>::Mask;
-    #[inline(always)]
-    fn splat(v: f32) -> Self {
-        <T as Lane>::splat(v)
-    }
-    #[inline(always)]
-    fn pi() -> Self {
-        <T as Lane>::splat(core::f32::consts::PI)
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        <T as Lane>::sqrt(self)
-    }
-    #[inline(always)]
-    fn lt(self, rhs: Self) -> Self::Mask {
-        <T as Lane>::lt(self, rhs)
-    }
-    #[inline(always)]
-    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self {
-        <T as Lane>::select(mask, if_true, if_false)
-    }
-    #[inline(always)]
-    fn any(mask: Self::Mask) -> bool {
-        <T as Lane>::any(mask)
-    }
-    #[inline(always)]
-    fn pow_clamped(x: Self, n: Self) -> Self {
-        pow_clamped(x, n)
-    }
-    #[inline(always)]
-    fn max(self, rhs: Self) -> Self {
-        <T as Lane>::max(self, rhs)
-    }
-}
-
-impl Real for f64 {
-    type Mask = bool;
-    fn splat(v: f32) -> Self {
-        v as f64
-    }
-    fn pi() -> Self {
-        core::f64::consts::PI
-    }
-    fn sqrt(self) -> Self {
-        libm::sqrt(self)
-    }
-    fn lt(self, rhs: Self) -> bool {
-        self < rhs
-    }
-    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
-        if mask {
-            if_true
-        } else {
-            if_false
-        }
-    }
-    fn any(mask: bool) -> bool {
-        mask
-    }
+impl Pow for f64 {
     fn pow_clamped(x: Self, n: Self) -> Self {
         if x > 0.0 {
             libm::pow(x.min(1.0), n)
@@ -165,7 +78,8 @@ impl Real for f64 {
 }
 
 /// The scalar types per-material constants are computed in: `f32` (prepare) and `f64`
-/// (tests). They add the one function only [`Params::of`] needs.
+/// (tests); `2^x` is needed only there, once per material and frame.
+#[doc(hidden)]
 pub trait ScalarReal: Real<Mask = bool> {
     /// `2^x`.
     fn exp2(self) -> Self;
@@ -183,46 +97,21 @@ impl ScalarReal for f64 {
     }
 }
 
-#[inline(always)]
-fn dot<T: Real>(a: Vec3<T>, b: Vec3<T>) -> T {
-    a.x * b.x + a.y * b.y + a.z * b.z
-}
-
-#[inline(always)]
-fn add<T: Real>(a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
-    Vec3::new(a.x + b.x, a.y + b.y, a.z + b.z)
-}
-
-#[inline(always)]
-fn scale<T: Real>(a: Vec3<T>, s: T) -> Vec3<T> {
-    Vec3::new(a.x * s, a.y * s, a.z * s)
-}
-
-#[inline(always)]
-fn select3<T: Real>(m: T::Mask, a: Vec3<T>, b: Vec3<T>) -> Vec3<T> {
-    Vec3::new(
-        T::select(m, a.x, b.x),
-        T::select(m, a.y, b.y),
-        T::select(m, a.z, b.z),
-    )
-}
-
 /// `R·V` with `R` the light's travel direction `−L` mirrored about `N`: `D − 2(N·D)N`,
 /// `D = −L`. Unclamped. Symmetric in `L` and `V` in exact arithmetic
 /// (`2(N·L)(N·V) − L·V`).
 #[inline(always)]
 pub fn phong_cosine<T: Real>(n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> T {
-    let travel = Vec3::new(-to_light.x, -to_light.y, -to_light.z);
-    let k = T::splat(2.0) * dot(n, travel);
-    let mirrored = Vec3::new(travel.x - n.x * k, travel.y - n.y * k, travel.z - n.z * k);
-    dot(mirrored, view)
+    let travel = -to_light;
+    let mirrored = travel - n * (T::splat(2.0) * n.dot(travel));
+    mirrored.dot(view)
 }
 
 /// `1/|L + V|`, or 0 where `L + V` is zero.
 #[inline(always)]
 fn inverse_half_length<T: Real>(h: Vec3<T>) -> T {
     let zero = T::splat(0.0);
-    let h2 = dot(h, h);
+    let h2 = h.dot(h);
     T::select(zero.lt(h2), T::splat(1.0) / h2.sqrt(), zero)
 }
 
@@ -237,16 +126,16 @@ pub fn specular_cosine<T: Real>(n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>, bl
     if !T::any(blinn) {
         return r_dot_v;
     }
-    let h = add(to_light, view);
+    let h = to_light + view;
     let inv_len = inverse_half_length(h);
-    T::select(blinn, dot(n, h) * inv_len, r_dot_v)
+    T::select(blinn, n.dot(h) * inv_len, r_dot_v)
 }
 
 /// `L·H = V·H`, the cosine Fresnel's factor depends on (0 where `L + V` is zero).
 #[inline(always)]
 pub fn half_angle_cosine<T: Real>(to_light: Vec3<T>, view: Vec3<T>) -> T {
-    let h = add(to_light, view);
-    dot(to_light, h) * inverse_half_length(h)
+    let h = to_light + view;
+    to_light.dot(h) * inverse_half_length(h)
 }
 
 /// Schlick's weight `(1 − max(0, c))⁵`, by multiplications: `F = F₀ + (1 − F₀)·weight`.
@@ -312,6 +201,7 @@ pub struct Params<T> {
     pub diffuse_loss: T,
 }
 
+#[doc(hidden)]
 /// The flags of [`Params`] as lane masks.
 #[derive(Clone, Copy, Debug)]
 pub struct Masks<T: Real> {
@@ -323,6 +213,7 @@ pub struct Masks<T: Real> {
     pub schlick: T::Mask,
 }
 
+#[doc(hidden)]
 /// Which optional parts of [`terms`] a packet needs: each is skipped as a whole when no lane
 /// needs it, which changes no bit (a skipped part's contribution is exactly zero or one on
 /// the lanes that do not need it).
@@ -374,7 +265,7 @@ impl<T: Real> Params<T> {
         for (w, v) in b.more_shininess.iter_mut().zip(a.more_shininess) {
             *w = T::select(mask, v, *w);
         }
-        b.f0 = select3(mask, a.f0, b.f0);
+        b.f0 = Vec3::select(mask, a.f0, b.f0);
         b.schlick = T::select(mask, a.schlick, b.schlick);
         b.diffuse_loss = T::select(mask, a.diffuse_loss, b.diffuse_loss);
         b.normalized = T::select(mask, a.normalized, b.normalized);
@@ -417,7 +308,7 @@ impl<T: ScalarReal> Params<T> {
             schlick: zero,
             diffuse_loss: zero,
         };
-        let diffuse = scale(kd_albedo, one / T::pi());
+        let diffuse = kd_albedo.scale(one / T::pi());
         let (spec, blinn) = match m.model {
             Model::NormalizedPhong(spec) => (spec, false),
             Model::NormalizedBlinnPhong(spec) => (spec, true),
@@ -469,6 +360,7 @@ impl<T: ScalarReal> Params<T> {
     }
 }
 
+#[doc(hidden)]
 /// What one light adds, per unit of arriving light: the pixel gets
 /// `kd_albedo ⊙ Σ I·diffuse + ks·Σ I ⊙ specular`.
 #[derive(Clone, Copy, Debug)]
@@ -481,11 +373,12 @@ pub struct Terms<T> {
     pub specular: Vec3<T>,
 }
 
+#[doc(hidden)]
 /// The diffuse and specular terms of one light for the material constants `p`, at every
 /// lane: the models of the table in the module docs, times `cos θ_i` for the normalized
 /// ones. `present` says which optional parts to compute (see [`Present`]).
 #[inline(always)]
-pub fn terms<T: Real>(
+pub fn terms<T: Pow>(
     p: &Params<T>,
     masks: &Masks<T>,
     present: Present,
@@ -494,7 +387,7 @@ pub fn terms<T: Real>(
     view: Vec3<T>,
 ) -> Terms<T> {
     let zero = T::splat(0.0);
-    let n_dot_l = dot(n, to_light).max(zero);
+    let n_dot_l = n.dot(to_light).max(zero);
     let cosine = specular_cosine(n, to_light, view, masks.blinn);
     // pow_clamped is exactly 0 where the cosine is not positive, so a packet with no
     // positive lane can skip it without changing a bit.
@@ -533,23 +426,20 @@ pub fn terms<T: Real>(
     let sum = sum * n_dot_l;
     Terms {
         diffuse: T::select(masks.normalized, n_dot_l * diffuse_scale, classic.diffuse),
-        specular: select3(masks.normalized, scale(f, sum), classic.specular),
+        specular: Vec3::select(masks.normalized, f.scale(sum), classic.specular),
     }
 }
 
 /// The BRDF `f(ω_i, ω_o)` itself, per channel: [`terms`] with everything present, combined
 /// as the kernel combines it, divided by `cos θ_i`. For directions above the surface
 /// (`N·L > 0`, `N·V > 0`); elsewhere it is not defined here.
-pub fn value<T: Real>(p: &Params<T>, n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> Vec3<T> {
+pub fn value<T: Pow>(p: &Params<T>, n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> Vec3<T> {
     let t = terms(p, &p.masks(), Present::ALL, n, to_light, view);
-    let cos_i = dot(n, to_light);
-    let c = add(
-        Vec3::new(
-            p.kd_albedo.x * t.diffuse,
-            p.kd_albedo.y * t.diffuse,
-            p.kd_albedo.z * t.diffuse,
-        ),
-        scale(t.specular, p.ks),
-    );
-    scale(c, T::splat(1.0) / cos_i)
+    let cos_i = n.dot(to_light);
+    let c = Vec3::new(
+        p.kd_albedo.x * t.diffuse,
+        p.kd_albedo.y * t.diffuse,
+        p.kd_albedo.z * t.diffuse,
+    ) + t.specular.scale(p.ks);
+    c.scale(T::splat(1.0) / cos_i)
 }

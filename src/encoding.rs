@@ -1,10 +1,14 @@
-//! Output encodings: the transfer function (linear or sRGB) and ordered dithering, applied in
-//! the encode stage after the kernel's linear colour.
+//! The encode step, in one place: how a kernel's linear colour becomes a pixel's levels. Every
+//! rounding rule of the crate is here: [`quantize`] (`f32`, and the same operations a packet
+//! at a time for the SIMD paths), [`quantize_fixed`] (unsigned 16.16), the linear codes
+//! ([`linear_code`], [`linear_code_fixed`]), the luma of [`Gray8`](crate::Gray8)
+//! ([`luma_code`]), the sRGB transfer and ordered dithering ([`encode_levels`]). Pixel
+//! formats only state their levels and pack them ([`crate::pixel`]).
 //!
-//! The default, [`Encoding::LINEAR`], is the lesson's rule and the crate's historical output:
-//! clamp to `[0, 1]`, scale to the format's largest level, round to nearest
-//! ([`quantize`](crate::pixel::quantize) in `f32`, [`quantize_fixed`](crate::pixel::quantize_fixed)
-//! in fixed point), the float paths a whole packet at a time. Every other encoding goes through
+//! The default, [`Encoding::LINEAR`], is the lesson's rule: clamp to `[0, 1]` (NaN gives 0),
+//! scale to the format's largest level, round to nearest ([`quantize`] in `f32`,
+//! [`quantize_fixed`] in fixed point), the float paths a whole packet at a time. No gamma is
+//! applied: the scene's numbers are written as they are. Every other encoding goes through
 //! **one integer function** of the pixel's *linear code* and position, shared by every path:
 //!
 //! 1. **Linear code** `c` in `0..=65536` (unsigned 16.16, `65536` is 1.0) per channel:
@@ -29,14 +33,14 @@
 //! function of the colour and the pixel's `(x, y)`: rows stay independent and frames
 //! deterministic.
 //!
-//! The default keeps its own faster route (no integer step): [`Encoding::LINEAR`] output is
-//! the same bits as before encodings existed, which the golden CRCs check.
+//! The default takes its own faster route, with no integer step: the float paths quantize
+//! whole packets in `f32` ([`quantize`]'s operations), which the golden CRCs pin down.
 //!
 //! # Choosing one
 //!
-//! An encoding belongs to a prepared frame: [`Render::with_encoding`] wraps any path's frame in
-//! [`Encoded`], which renders with it; or pass one per call with
-//! [`Render::render_segment_with`].
+//! An encoding belongs to a prepared frame: [`Render::with_encoding`](crate::Render::with_encoding) wraps any path's frame in
+//! [`Encoded`](crate::Encoded), which renders with it; or pass one per call with
+//! [`Render::render_segment_with`](crate::Render::render_segment_with).
 //!
 //! ```
 //! use shadeline::{exponent_series, Encoding, Prepared, Render, Rgb565, Simd8};
@@ -51,11 +55,9 @@
 //!
 //! [`SRGB_TABLE`] is 8 KiB of read-only data, linked only if sRGB is used. Per pixel, a
 //! non-default encoding costs per channel a table lookup (sRGB) and two integer
-//! multiplications; the default's packet-wide `f32` quantization is unchanged.
+//! multiplications, on top of the default's packet-wide `f32` quantization.
 
-use crate::render::{Render, RenderError};
-use crate::spans::Span;
-use crate::Pixel;
+use crate::real::Real;
 
 /// The transfer function applied to linear colour before quantizing.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
@@ -85,7 +87,7 @@ pub struct Encoding {
 }
 
 impl Encoding {
-    /// Linear, no dithering: the default, bit for bit the crate's historical output.
+    /// Linear, no dithering: the default (the lesson's rule).
     pub const LINEAR: Encoding = Encoding {
         transfer: Transfer::Linear,
         dither: false,
@@ -191,12 +193,71 @@ const fn srgb_table() -> [u16; SRGB_TABLE_STEPS + 1] {
     t
 }
 
+/// `clamp(c, 0, 1)`, NaN giving 0: `if 0 < c { c } else { 0 }`, then `if c < 1 { c } else
+/// { 1 }`, lane by lane, the same operations at every width.
+#[inline(always)]
+pub(crate) fn clamp_unit<T: Real>(c: T) -> T {
+    let (zero, one) = (T::splat(0.0), T::splat(1.0));
+    let c = T::select(zero.lt(c), c, zero);
+    T::select(c.lt(one), c, one)
+}
+
+/// `clamp(c, 0, 1)·max + ½`, before truncation: the float rule of every level and code. A
+/// packet truncates its lanes with `trunc_lanes`, a scalar with `as`; both give
+/// `⌊clamp(c, 0, 1)·max + ½⌋`, round to nearest.
+#[inline(always)]
+pub(crate) fn quantize_lanes<T: Real>(c: T, max: f32) -> T {
+    clamp_unit(c) * T::splat(max) + T::splat(0.5)
+}
+
+/// The float luma of three channels: `clamp(r)·w_r + clamp(g)·w_g + clamp(b)·w_b` with
+/// [`LUMA_WEIGHTS_F32`], added left to right (see [`Gray8`](crate::Gray8)).
+#[inline(always)]
+pub(crate) fn luma<T: Real>([r, g, b]: [T; 3]) -> T {
+    let [wr, wg, wb] = LUMA_WEIGHTS_F32;
+    clamp_unit(r) * T::splat(wr) + clamp_unit(g) * T::splat(wg) + clamp_unit(b) * T::splat(wb)
+}
+
+/// `⌊clamp(c, 0, 1)·max + ½⌋`: round to the nearest of `max + 1` levels. NaN gives 0.
+#[inline(always)]
+pub fn quantize(c: f32, max: f32) -> u16 {
+    quantize_lanes(c, max) as u16
+}
+
+/// The fixed-point twin of [`quantize`]: `⌊clamp(v, 0, 1)·max + ½⌋` for `v` in unsigned
+/// 16.16, in integers only.
+#[inline(always)]
+pub fn quantize_fixed(v: u32, max: u32) -> u16 {
+    let v = v.min(1 << 16);
+    ((v * max + (1 << 15)) >> 16) as u16
+}
+
+/// [`quantize`] per channel to the largest levels `max`: the default encoding of an `f32`
+/// colour for every format that stores levels.
+#[inline(always)]
+pub(crate) fn levels([r, g, b]: [f32; 3], max: [u16; 3]) -> [u16; 3] {
+    [
+        quantize(r, max[0] as f32),
+        quantize(g, max[1] as f32),
+        quantize(b, max[2] as f32),
+    ]
+}
+
+/// [`quantize_fixed`] per channel to the largest levels `max`: the default encoding of a
+/// fixed-path colour for every format that stores levels.
+#[inline(always)]
+pub(crate) fn levels_fixed([r, g, b]: [u32; 3], max: [u16; 3]) -> [u16; 3] {
+    [
+        quantize_fixed(r, max[0] as u32),
+        quantize_fixed(g, max[1] as u32),
+        quantize_fixed(b, max[2] as u32),
+    ]
+}
+
 /// The linear code of an `f32` channel: `⌊clamp(v, 0, 1)·65536 + ½⌋`, NaN gives 0.
 #[inline(always)]
 pub fn linear_code(v: f32) -> u32 {
-    let v = if v > 0.0 { v } else { 0.0 };
-    let v = if v < 1.0 { v } else { 1.0 };
-    (v * 65536.0 + 0.5) as u32
+    quantize_lanes(v, 65536.0) as u32
 }
 
 /// The linear code of a fixed-path channel (unsigned 16.16): `min(v, 65536)`.
@@ -238,7 +299,7 @@ pub fn quantize_code(e: u32, max: u16, t: u32) -> u16 {
 }
 
 /// The levels of a pixel with linear codes `codes` at `(x, y)` under `encoding`, for a format
-/// with [`Pixel::LEVELS`] `levels` (and [`Pixel::GRAY`] `gray`): steps 2–4 of the module rule.
+/// with [`Pixel::LEVELS`](crate::Pixel::LEVELS) `levels` (and [`Pixel::GRAY`](crate::Pixel::GRAY) `gray`): steps 2–4 of the module rule.
 #[inline]
 pub fn encode_levels(
     codes: [u32; 3],
@@ -267,85 +328,6 @@ pub fn encode_levels(
         quantize_code(transfer(g), levels[1], t),
         quantize_code(transfer(b), levels[2], t),
     ]
-}
-
-/// A pixel of a levels format from its linear codes, position and encoding.
-#[inline]
-pub(crate) fn pixel_from_codes<P: Pixel>(
-    codes: [u32; 3],
-    encoding: Encoding,
-    x: u32,
-    y: u32,
-) -> Option<P> {
-    let levels = P::LEVELS?;
-    Some(P::from_levels(encode_levels(
-        codes,
-        levels,
-        P::GRAY,
-        encoding,
-        x,
-        y,
-    )))
-}
-
-/// A prepared frame together with the [`Encoding`] it renders with; built by
-/// [`Render::with_encoding`].
-///
-/// It implements [`Render`] (so [`render_line`](Render::render_line),
-/// [`render_frame`](Render::render_frame) and the byte and embedded-graphics sinks all use the
-/// encoding); the frame itself stays reachable with [`Encoded::frame`].
-///
-/// Why a wrapper and not a field of each path's prepared frame: the encoding is the same
-/// concern for every path, and the wrapper makes it one type that works with any [`Render`].
-#[derive(Clone, Debug)]
-pub struct Encoded<R> {
-    frame: R,
-    encoding: Encoding,
-}
-
-impl<R: Render> Encoded<R> {
-    /// `frame` rendering with `encoding`.
-    pub fn new(frame: R, encoding: Encoding) -> Self {
-        Encoded { frame, encoding }
-    }
-
-    /// The wrapped frame.
-    pub fn frame(&self) -> &R {
-        &self.frame
-    }
-
-    /// The wrapped frame, unwrapped.
-    pub fn into_frame(self) -> R {
-        self.frame
-    }
-}
-
-impl<R: Render> Render for Encoded<R> {
-    fn width(&self) -> u32 {
-        self.frame.width()
-    }
-
-    fn height(&self) -> u32 {
-        self.frame.height()
-    }
-
-    fn encoding(&self) -> Encoding {
-        self.encoding
-    }
-
-    fn render_segment_with<P: Pixel>(
-        &self,
-        y: u32,
-        x: u32,
-        out: &mut [P],
-        encoding: Encoding,
-    ) -> Result<(), RenderError> {
-        self.frame.render_segment_with(y, x, out, encoding)
-    }
-
-    fn row_coverage(&self, y: u32) -> Option<Span> {
-        self.frame.row_coverage(y)
-    }
 }
 
 #[cfg(test)]
@@ -445,11 +427,7 @@ mod tests {
             let got = encode_levels([raw; 3], [31, 63, 255], false, Encoding::LINEAR, 0, 0);
             assert_eq!(
                 got,
-                [
-                    crate::pixel::quantize(v, 31.0),
-                    crate::pixel::quantize(v, 63.0),
-                    crate::pixel::quantize(v, 255.0)
-                ]
+                [quantize(v, 31.0), quantize(v, 63.0), quantize(v, 255.0)]
             );
         }
     }

@@ -84,11 +84,30 @@
 //! crate's MSRV). Built in CI for `thumbv6m-none-eabi` (Cortex-M0), `thumbv7em-none-eabihf`
 //! (Cortex-M4F/M7) and `riscv32imac-unknown-none-elf`, and tested on x86-64 (SSE2 and AVX2).
 //!
+//! ## The lesson
+//!
+//! Some docs cite *the lesson*: the tutorial on the Phong reflection model whose formulas and
+//! scene this crate implements. From it come the classic Phong and Blinn-Phong models (not
+//! normalized), the exponent series scene ([`exponent_series`]), the shadow-ray offset (its
+//! `bias`, here [`Scene::ray_epsilon`]) and the default encoding (clamp, round to nearest,
+//! no gamma: [`Encoding::LINEAR`]). The normalized models, sRGB, dithering and the fixed path
+//! extend it; they leave those frames as they are.
+//!
 //! ## Layout
 //!
-//! [`scene`] (what the caller describes) → [`prepare`] (per-frame constants) → [`render`]
-//! (the row driver, with [`spans`]) → `float_kernel` (the per-pixel stages, over [`lane`]) →
-//! [`pixel`] and [`encoding`] (encode). The formulas live in [`brdf`].
+//! The modules form layers; each uses only the layers before it (checked in CI by
+//! `checks/module-graph.py`):
+//!
+//! 1. numbers and pixels: [`real`] (the numeric trait), [`Vec3`], [`encoding`] (every
+//!    rounding rule), [`pixel`] (formats and packing);
+//! 2. [`scene`]: what the caller describes, validated;
+//! 3. [`brdf`]: the reflection formulas, written once over [`real::Real`];
+//! 4. the contract of a row: [`render`] (the [`Render`] trait, errors) and the shared row
+//!    helpers (covered runs, the background fill);
+//! 5. the two paths, each `prepare` → `spans` → `row` → `kernel`: [`float`] (scalar and
+//!    SIMD, one kernel over a lane type) and [`fixed`] (integers only);
+//! 6. sinks built on [`Render`]: `eg` (feature `embedded-graphics`);
+//! 7. built on everything: [`presets`] and the independent [`reference`].
 
 #![no_std]
 #![forbid(unsafe_code)]
@@ -99,29 +118,27 @@ pub mod brdf;
 pub mod eg;
 pub mod encoding;
 pub mod fixed;
-mod float_kernel;
-pub mod float_math;
-pub mod lane;
+pub mod float;
 pub mod pixel;
-pub mod prepare;
 pub mod presets;
+pub mod real;
 pub mod reference;
 pub mod render;
+mod runs;
 pub mod scene;
-pub mod spans;
-pub mod vec3;
+mod vec3;
 
-pub use encoding::{Encoded, Encoding, Transfer};
+pub use encoding::{Encoding, Transfer};
 pub use fixed::PreparedFixed;
+pub use float::{FloatPath, Prepared, Scalar, Simd4, Simd8};
 pub use pixel::{
     Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
 };
-pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8, MAX_DIMENSION};
 pub use presets::{exponent_series, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE};
-pub use render::{Render, RenderError, LINE_CHUNK};
+pub use render::{Encoded, Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
+pub use runs::Span;
 pub use scene::{
     Camera, Item, ItemKind, Light, Lobe, Material, Metal, Model, Problem, Scene, SceneError,
     Specular, Sphere, Surface, MORE_LOBES,
 };
-pub use spans::Span;
 pub use vec3::Vec3;

@@ -1,12 +1,10 @@
-//! Pixel formats and the encode stage: how a shaded sample becomes the caller's pixel.
+//! Pixel formats: what each one stores and how it packs its levels.
 //!
 //! The kernels produce linear RGB (and, for the diagnostic [`HitRecord`] format, which sphere
-//! was hit and which lights were blocked). The encode stage is the same for every path that
-//! produces `f32`: clamp each channel to `[0, 1]`, scale to the format's largest level and
-//! round to nearest (`⌊c·max + ½⌋`). By default no gamma is applied: the scene's numbers are
-//! written as-is, as in the lesson; a frame can instead encode with sRGB and ordered dithering
-//! (see [`crate::encoding`]). NaN cannot reach this stage (the scene model rules it out), but
-//! the clamp is written so that it would encode as 0, never as garbage.
+//! was hit and which lights were blocked). A format with levels states its largest level per
+//! channel ([`Pixel::LEVELS`]) and packs levels into its storage ([`Pixel::from_levels`]);
+//! how a colour becomes levels (clamp, round to nearest, optional sRGB and dithering, the
+//! luma of [`Gray8`]) is [`crate::encoding`]'s, one rule for every path.
 //!
 //! | format | storage | channels |
 //! |---|---|---|
@@ -19,6 +17,10 @@
 //!
 //! For a display's byte layout (RGB565 big-endian) see [`BytePixel`] and
 //! [`Render::render_line_bytes`](crate::Render::render_line_bytes).
+
+use crate::encoding::{
+    encode_levels, levels, levels_fixed, luma, luma_code, quantize, quantize_fixed, Encoding,
+};
 
 /// A linear RGB triple: a colour in the scene, and the unclamped `f32` output format.
 ///
@@ -101,7 +103,7 @@ pub struct FixedShade {
 /// A pixel format the row renderers can write.
 ///
 /// Implemented for [`Rgb888`], [`Rgb565`], [`Bgr565`], [`Gray8`], [`LinearRgb`] and
-/// [`HitRecord`]. The [`Encoding`](crate::Encoding) of a frame applies to the formats with
+/// [`HitRecord`]. The [`Encoding`] of a frame applies to the formats with
 /// [`Pixel::LEVELS`]; the others store the kernel's output as it is.
 pub trait Pixel: Copy {
     /// Whether [`Shade::hit`] must be filled in; formats that only store colour leave it
@@ -131,44 +133,6 @@ pub trait Pixel: Copy {
     fn encode_fixed(shade: &FixedShade) -> Self;
 }
 
-/// The fixed-point twin of [`quantize`]: `⌊clamp(v, 0, 1)·max + ½⌋` for `v` in unsigned
-/// 16.16, in integers only.
-#[inline(always)]
-pub fn quantize_fixed(v: u32, max: u32) -> u16 {
-    let v = v.min(1 << 16);
-    ((v * max + (1 << 15)) >> 16) as u16
-}
-
-/// `⌊clamp(c, 0, 1)·max + ½⌋`: round to the nearest of `max + 1` levels. NaN gives 0.
-#[inline(always)]
-pub fn quantize(c: f32, max: f32) -> u16 {
-    let c = if c > 0.0 { c } else { 0.0 };
-    let c = if c < 1.0 { c } else { 1.0 };
-    (c * max + 0.5) as u16
-}
-
-/// [`quantize`] per channel to the largest levels `max`: the `encode` of every format that
-/// stores levels.
-#[inline(always)]
-fn levels(c: &LinearRgb, max: [u16; 3]) -> [u16; 3] {
-    [
-        quantize(c.r, max[0] as f32),
-        quantize(c.g, max[1] as f32),
-        quantize(c.b, max[2] as f32),
-    ]
-}
-
-/// [`quantize_fixed`] per channel to the largest levels `max`: the `encode_fixed` of every
-/// format that stores levels.
-#[inline(always)]
-fn levels_fixed([r, g, b]: [u32; 3], max: [u16; 3]) -> [u16; 3] {
-    [
-        quantize_fixed(r, max[0] as u32),
-        quantize_fixed(g, max[1] as u32),
-        quantize_fixed(b, max[2] as u32),
-    ]
-}
-
 const RGB888_MAX: [u16; 3] = [255, 255, 255];
 const RGB565_MAX: [u16; 3] = [31, 63, 31];
 
@@ -184,7 +148,7 @@ impl Pixel for Rgb888 {
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Self::from_levels(levels(&s.color, RGB888_MAX))
+        Self::from_levels(levels([s.color.r, s.color.g, s.color.b], RGB888_MAX))
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
@@ -208,7 +172,7 @@ impl Pixel for Rgb565 {
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Self::from_levels(levels(&s.color, RGB565_MAX))
+        Self::from_levels(levels([s.color.r, s.color.g, s.color.b], RGB565_MAX))
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
@@ -248,7 +212,7 @@ impl Pixel for Bgr565 {
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Self::from_levels(levels(&s.color, RGB565_MAX))
+        Self::from_levels(levels([s.color.r, s.color.g, s.color.b], RGB565_MAX))
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
@@ -262,26 +226,11 @@ impl Pixel for Bgr565 {
 /// The rule, per path: the float paths clamp each channel to `[0, 1]`, form
 /// `r·w_r + g·w_g + b·w_b` in `f32` (left to right, the weights exact in `f32`) and round it
 /// like [`quantize`]; the fixed path forms the same sum in integers
-/// ([`luma_code`](crate::encoding::luma_code)) and rounds it like [`quantize_fixed`]. With a
-/// non-default [`Encoding`](crate::Encoding) both take the integer route from linear codes.
+/// ([`luma_code`]) and rounds it like [`quantize_fixed`]. With a
+/// non-default [`Encoding`] both take the integer route from linear codes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default, Hash)]
 #[repr(transparent)]
 pub struct Gray8(pub u8);
-
-/// The float paths' luma of a clamped colour (see [`Gray8`]).
-#[inline(always)]
-pub(crate) fn luma_f32(c: LinearRgb) -> f32 {
-    let clamp = |v: f32| {
-        let v = if v > 0.0 { v } else { 0.0 };
-        if v < 1.0 {
-            v
-        } else {
-            1.0
-        }
-    };
-    let [wr, wg, wb] = crate::encoding::LUMA_WEIGHTS_F32;
-    clamp(c.r) * wr + clamp(c.g) * wg + clamp(c.b) * wb
-}
 
 impl Pixel for Gray8 {
     const LEVELS: Option<[u16; 3]> = Some([255, 255, 255]);
@@ -292,11 +241,11 @@ impl Pixel for Gray8 {
     }
     #[inline(always)]
     fn encode(s: &Shade) -> Self {
-        Gray8(quantize(luma_f32(s.color), 255.0) as u8)
+        Gray8(quantize(luma([s.color.r, s.color.g, s.color.b]), 255.0) as u8)
     }
     #[inline(always)]
     fn encode_fixed(s: &FixedShade) -> Self {
-        Gray8(quantize_fixed(crate::encoding::luma_code(s.color), 255) as u8)
+        Gray8(quantize_fixed(luma_code(s.color), 255) as u8)
     }
 }
 
@@ -376,6 +325,26 @@ impl Pixel for HitRecord {
     fn encode_fixed(s: &FixedShade) -> Self {
         s.hit
     }
+}
+
+/// A pixel of a levels format from its linear codes, position and encoding
+/// ([`encode_levels`]); `None` for formats without levels.
+#[inline]
+pub(crate) fn pixel_from_codes<P: Pixel>(
+    codes: [u32; 3],
+    encoding: Encoding,
+    x: u32,
+    y: u32,
+) -> Option<P> {
+    let levels = P::LEVELS?;
+    Some(P::from_levels(encode_levels(
+        codes,
+        levels,
+        P::GRAY,
+        encoding,
+        x,
+        y,
+    )))
 }
 
 #[cfg(test)]

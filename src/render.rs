@@ -1,29 +1,33 @@
-//! The row driver: one row of pixels into the caller's slice.
+//! What every path's prepared frame offers: the [`Render`] trait, its errors
+//! ([`RenderError`]) and the size limits.
 //!
-//! For row `y` it computes every sphere's [`Span`], merges them into covered runs,
-//! fills everything outside the runs with the background pixel (encoded once per row, no
-//! per-pixel work), and walks each run in packets of the path's lane count, handing the kernel
-//! only the spheres whose spans touch the packet. The last packet of a run computes full lanes
-//! and stores only the pixels that belong to the run: no per-lane branch in the math, no read
-//! or write outside the caller's slice.
+//! A path implements two methods: [`Render::render_segment_with`] (any run of pixels of one
+//! row, with an explicit [`Encoding`]) and [`Render::row_coverage`] (which part of a row the
+//! spheres may cover, so sinks can skip background rows). The sinks are built on them once,
+//! for every path: [`Render::render_line`], [`Render::render_frame`],
+//! [`Render::render_line_bytes`] and, with the `embedded-graphics` feature, `eg::Drawing`.
+//! The row drivers themselves are `src/float/row.rs` and `src/fixed/row.rs`.
 //!
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
 
-use crate::encoding::{linear_code, pixel_from_codes, Encoded, Encoding};
-use crate::float_kernel::Packet;
-use crate::lane::Lane;
-use crate::pixel::{BytePixel, HitRecord, LinearRgb, Pixel, Shade};
-use crate::prepare::{FloatPath, Prepared};
+use crate::encoding::Encoding;
+use crate::pixel::{BytePixel, Pixel};
+use crate::runs::Span;
 use crate::scene::Item;
-use crate::spans::Span;
 use core::fmt;
+
+/// Largest accepted image width or height, in pixels, on every path.
+///
+/// Pixel indices stay exact in `f32` far beyond this; the limit keeps `width × height`
+/// within `u32` and matches what a 16-bit display controller can address.
+pub const MAX_DIMENSION: u32 = 65_535;
 
 /// Why a row or frame could not be rendered. Nothing is written when one is returned.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum RenderError {
-    /// A width or height of 0, or above [`MAX_DIMENSION`](crate::MAX_DIMENSION).
+    /// A width or height of 0, or above [`MAX_DIMENSION`].
     BadSize {
         /// The requested width.
         width: u32,
@@ -282,107 +286,6 @@ pub(crate) fn check_segment(
     Ok(())
 }
 
-/// The covered hull of a row's spans: from the smallest start to the largest end.
-pub(crate) fn coverage_of(spans: &[Option<Span>]) -> Option<Span> {
-    spans.iter().flatten().fold(None, |acc: Option<Span>, s| {
-        Some(match acc {
-            None => *s,
-            Some(a) => Span {
-                start: a.start.min(s.start),
-                end: a.end.max(s.end),
-            },
-        })
-    })
-}
-
-/// The background of one row, encoded: one pixel, or four (`x mod 4`) when dithering.
-pub(crate) struct Background<P> {
-    pixels: [P; 4],
-    dither: bool,
-}
-
-impl<P: Pixel> Background<P> {
-    /// `pixel(x)` encodes the background at column `x` (called for `x` in `0..4`, or once
-    /// with 0 when not dithering).
-    #[inline(always)]
-    pub(crate) fn new(encoding: Encoding, pixel: impl Fn(u32) -> P) -> Self {
-        let first = pixel(0);
-        if encoding.dither && P::LEVELS.is_some() {
-            Background {
-                pixels: [first, pixel(1), pixel(2), pixel(3)],
-                dither: true,
-            }
-        } else {
-            Background {
-                pixels: [first; 4],
-                dither: false,
-            }
-        }
-    }
-
-    /// The pixel at column `x`.
-    #[inline(always)]
-    pub(crate) fn at(&self, x: usize) -> P {
-        self.pixels[x & 3]
-    }
-
-    /// Fills `out`, whose first pixel is column `x`.
-    ///
-    /// The first pixels (one period of the pattern: 1, or 4 when dithering) are written one
-    /// by one, the rest by doubling copies of what is already there: `[P]::fill` is a loop
-    /// per element for 3-byte pixels, while a copy is a `memcpy`. The dither pattern has
-    /// period 4 and every copy lands a multiple of 4 pixels further on, so it stays in phase.
-    #[inline(always)]
-    pub(crate) fn fill(&self, out: &mut [P], x: usize) {
-        let period = if self.dither { 4 } else { 1 };
-        for (px, x) in out.iter_mut().zip(x..).take(period) {
-            *px = self.at(x);
-        }
-        let mut filled = period;
-        while filled < out.len() {
-            let (head, tail) = out.split_at_mut(filled);
-            let n = head.len().min(tail.len());
-            if let (Some(dst), Some(src)) = (tail.get_mut(..n), head.get(..n)) {
-                dst.copy_from_slice(src);
-            }
-            filled += n;
-        }
-    }
-}
-
-/// The walk both row drivers share over the segment of a row that starts at column
-/// `seg_start` and fills `out`: the background everywhere outside the covered `runs` (sorted,
-/// disjoint), and `shade(first_column, pixels)` on each run's part inside the segment. Every
-/// slice is reached through `get_mut`, so nothing here can panic.
-#[inline(always)]
-pub(crate) fn walk_runs<P: Pixel>(
-    out: &mut [P],
-    seg_start: usize,
-    runs: &[Span],
-    background: &Background<P>,
-    mut shade: impl FnMut(usize, &mut [P]),
-) {
-    let seg_end = seg_start + out.len();
-    let mut x = seg_start;
-    for run in runs {
-        let start = (run.start as usize).max(seg_start);
-        let end = (run.end as usize).min(seg_end);
-        if start >= end {
-            continue;
-        }
-        if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
-            background.fill(gap, x);
-        }
-        x = end;
-        if let Some(run_pixels) = out.get_mut(start - seg_start..end - seg_start) {
-            shade(start, run_pixels);
-        }
-    }
-    if let Some(tail) = out.get_mut(x - seg_start..) {
-        background.fill(tail, x);
-    }
-}
-
 /// Checks a row request against an image size.
 pub(crate) fn check_line(y: u32, len: usize, width: u32, height: u32) -> Result<(), RenderError> {
     if y >= height {
@@ -397,72 +300,49 @@ pub(crate) fn check_line(y: u32, len: usize, width: u32, height: u32) -> Result<
     Ok(())
 }
 
-/// Merged covered runs of a row: `[start, end)` pixel ranges, sorted, disjoint.
-pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Vec<Span, S> {
-    let mut runs: heapless::Vec<Span, S> = heapless::Vec::new();
-    for span in spans.iter().flatten() {
-        let _ = runs.push(*span);
-    }
-    // Insertion sort by start: S is small and this is once per row. Written with a slice
-    // pattern instead of indexing so that no bounds check (and no panic path) is left for
-    // the firmware's link-time panic proof to find.
-    for i in 1..runs.len() {
-        let mut j = i;
-        while j > 0 {
-            match runs.get_mut(j - 1..=j) {
-                Some([a, b]) if a.start > b.start => core::mem::swap(a, b),
-                _ => break,
-            }
-            j -= 1;
-        }
-    }
-    let mut merged: heapless::Vec<Span, S> = heapless::Vec::new();
-    for span in runs {
-        match merged.last_mut() {
-            Some(last) if span.start <= last.end => last.end = last.end.max(span.end),
-            _ => {
-                let _ = merged.push(span);
-            }
-        }
-    }
-    merged
+/// A prepared frame together with the [`Encoding`] it renders with; built by
+/// [`Render::with_encoding`].
+///
+/// It implements [`Render`] (so [`render_line`](Render::render_line),
+/// [`render_frame`](Render::render_frame) and the byte and embedded-graphics sinks all use the
+/// encoding); the frame itself stays reachable with [`Encoded::frame`].
+///
+/// Why a wrapper and not a field of each path's prepared frame: the encoding is the same
+/// concern for every path, and the wrapper makes it one type that works with any [`Render`].
+#[derive(Clone, Debug)]
+pub struct Encoded<R> {
+    frame: R,
+    encoding: Encoding,
 }
 
-impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
-    /// Turns the scanline spans on (the default) or off. Off, every packet tests every sphere:
-    /// the naive per-pixel renderer, kept for benchmarks and for the test that spans change
-    /// no pixel.
-    pub fn with_spans(mut self, on: bool) -> Self {
-        self.use_spans = on;
-        self
+impl<R: Render> Encoded<R> {
+    /// `frame` rendering with `encoding`.
+    pub fn new(frame: R, encoding: Encoding) -> Self {
+        Encoded { frame, encoding }
     }
 
-    fn background_pixel<P: Pixel>(&self, encoding: Encoding, x: u32, y: u32) -> P {
-        if !encoding.is_default() {
-            let c = self.background;
-            let codes = [linear_code(c.r), linear_code(c.g), linear_code(c.b)];
-            if let Some(px) = pixel_from_codes(codes, encoding, x, y) {
-                return px;
-            }
-        }
-        P::encode(&Shade {
-            color: self.background,
-            hit: HitRecord::default(),
-        })
+    /// The wrapped frame.
+    pub fn frame(&self) -> &R {
+        &self.frame
+    }
+
+    /// The wrapped frame, unwrapped.
+    pub fn into_frame(self) -> R {
+        self.frame
     }
 }
 
-impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> {
+impl<R: Render> Render for Encoded<R> {
     fn width(&self) -> u32 {
-        self.width
+        self.frame.width()
     }
 
     fn height(&self) -> u32 {
-        self.height
+        self.frame.height()
     }
 
-    fn row_coverage(&self, y: u32) -> Option<Span> {
-        coverage_of(&self.row_spans(y))
+    fn encoding(&self) -> Encoding {
+        self.encoding
     }
 
     fn render_segment_with<P: Pixel>(
@@ -472,108 +352,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         out: &mut [P],
         encoding: Encoding,
     ) -> Result<(), RenderError> {
-        check_segment(y, x, out.len(), self.width, self.height)?;
-        let lanes = W::Lane::LANES;
-        let row = self.row(y);
-        let spans = self.row_spans(y);
-        let runs = merge_runs::<S>(&spans);
-        let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
-        walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
-            for (chunk_index, chunk) in run_pixels.chunks_mut(lanes).enumerate() {
-                let x0 = (start + chunk_index * lanes) as u32;
-                let x1 = x0 + chunk.len() as u32;
-                let mut candidates: heapless::Vec<u16, S> = heapless::Vec::new();
-                for (k, span) in spans.iter().enumerate() {
-                    if let Some(s) = span {
-                        if s.start < x1 && x0 < s.end {
-                            let _ = candidates.push(k as u16);
-                        }
-                    }
-                }
-                if candidates.is_empty() {
-                    background.fill(chunk, x0 as usize);
-                    continue;
-                }
-                let packet = self.shade_packet(&row, x0, &candidates, P::NEEDS_HITS);
-                store_packet(chunk, &packet, encoding, x0, y);
-            }
-        });
-        Ok(())
+        self.frame.render_segment_with(y, x, out, encoding)
     }
-}
 
-/// The encode stage of the float paths: writes the first `chunk.len()` lanes of a packet
-/// whose first pixel is `(x0, y)`.
-///
-/// With [`Encoding::LINEAR`], formats with levels are quantized a packet at a time, with the
-/// rule of [`quantize`](crate::pixel::quantize) (clamp with NaN to 0, `c·max + ½`, truncate;
-/// [`Gray8`](crate::Gray8) on the luma), so every width stores the bits the scalar path stores.
-/// Other encodings compute the linear codes a packet at a time
-/// ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
-/// ([`crate::encoding`]).
-#[inline(always)]
-fn store_packet<P: Pixel, T: Lane>(
-    chunk: &mut [P],
-    packet: &Packet<T>,
-    encoding: Encoding,
-    x0: u32,
-    y: u32,
-) {
-    if let Some(max) = P::LEVELS {
-        let zero = T::splat(0.0);
-        let one = T::splat(1.0);
-        let half = T::splat(0.5);
-        let clamp = |c: T| {
-            let c = T::select(zero.lt(c), c, zero);
-            T::select(c.lt(one), c, one)
-        };
-        let quantize = |c: T, max: f32| (clamp(c) * T::splat(max) + half).trunc_lanes();
-        if encoding.is_default() {
-            if P::GRAY {
-                let [wr, wg, wb] = crate::encoding::LUMA_WEIGHTS_F32;
-                let luma = clamp(packet.color.x) * T::splat(wr)
-                    + clamp(packet.color.y) * T::splat(wg)
-                    + clamp(packet.color.z) * T::splat(wb);
-                let l = quantize(luma, max[0] as f32);
-                for (px, l) in chunk.iter_mut().zip(&l) {
-                    *px = P::from_levels([*l as u16; 3]);
-                }
-                return;
-            }
-            let r = quantize(packet.color.x, max[0] as f32);
-            let g = quantize(packet.color.y, max[1] as f32);
-            let b = quantize(packet.color.z, max[2] as f32);
-            for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
-                *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
-            }
-            return;
-        }
-        let r = quantize(packet.color.x, 65536.0);
-        let g = quantize(packet.color.y, 65536.0);
-        let b = quantize(packet.color.z, 65536.0);
-        let codes = r.iter().zip(&g).zip(&b);
-        for ((px, ((r, g), b)), x) in chunk.iter_mut().zip(codes).zip(x0..) {
-            if let Some(p) = pixel_from_codes([*r as u32, *g as u32, *b as u32], encoding, x, y) {
-                *px = p;
-            }
-        }
-        return;
-    }
-    let (r, g, b) = (
-        packet.color.x.to_lanes(),
-        packet.color.y.to_lanes(),
-        packet.color.z.to_lanes(),
-    );
-    let spheres = packet.sphere.to_lanes();
-    let lanes = r.iter().zip(&g).zip(&b).zip(&spheres).zip(&packet.shadowed);
-    for (px, ((((r, g), b), sphere), shadowed)) in chunk.iter_mut().zip(lanes) {
-        let hit = *sphere >= 0.0;
-        *px = P::encode(&Shade {
-            color: LinearRgb::new(*r, *g, *b),
-            hit: HitRecord {
-                sphere: hit.then_some(*sphere as u16),
-                shadowed: if hit { *shadowed } else { 0 },
-            },
-        });
+    fn row_coverage(&self, y: u32) -> Option<Span> {
+        self.frame.row_coverage(y)
     }
 }

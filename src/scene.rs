@@ -64,7 +64,7 @@ pub struct Camera {
 
 /// Which reflection model a material uses. The formulas are in [`crate::brdf`].
 ///
-/// The two classic models are the lesson's, unchanged: empirical, not normalized, not energy
+/// The two classic models are the lesson's: empirical, not normalized, not energy
 /// conserving (their highlight does not dim as it widens). The others are normalized BRDFs:
 /// positive, reciprocal, and energy conserving when [`Material::is_energy_conserving`].
 ///
@@ -83,7 +83,9 @@ pub enum Model {
     /// Normalized (Lafortune–Willems modified) Phong:
     /// `kd·albedo/π + Σ wₖ·(nₖ + 2)/(2π)·max(0, R·V)^nₖ`.
     NormalizedPhong(Specular),
-    /// Normalized Blinn-Phong: `kd·albedo/π + Σ wₖ·(nₖ + 8)/(8π)·max(0, N·H)^nₖ`.
+    /// Normalized Blinn-Phong: `kd·albedo/π + Σ wₖ·c(nₖ)·max(0, N·H)^nₖ` with the exact
+    /// normalization `c(n) = (n + 2)(n + 4) / (8π(2^(−n/2) + n))`, which makes the lobe's
+    /// directional albedo 1 at normal view (see [`crate::brdf`]).
     NormalizedBlinnPhong(Specular),
 }
 

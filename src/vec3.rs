@@ -1,11 +1,12 @@
 //! `Vec3<T>`: one small vector type for every width.
 //!
 //! The scene is described with `Vec3<f32>`; the float kernel computes with `Vec3<L>` where
-//! `L` is a [`Lane`] (`f32`, `f32x4`, `f32x8`). The operations are written once, so a dot
+//! `L` is a lane type (`f32`, `f32x4`, `f32x8`), and the law tests with `Vec3<f64>`: every
+//! number type is a [`Real`]. The operations are written once, so a dot
 //! product is summed in the same order, `(x·x' + y·y') + z·z'`, at every width — one of the
 //! reasons the scalar and SIMD paths agree bit for bit.
 
-use crate::lane::Lane;
+use crate::real::Real;
 use core::ops::{Add, Mul, Neg, Sub};
 
 /// `2^64`: multiplying by it is exact for every vector `normalized` lifts.
@@ -36,7 +37,7 @@ impl<T> Vec3<T> {
     }
 }
 
-impl<T: Lane> Vec3<T> {
+impl<T: Real> Vec3<T> {
     /// All three components set to lanes of `v`.
     #[inline(always)]
     pub fn splat(v: Vec3<f32>) -> Self {
@@ -107,7 +108,7 @@ impl Vec3<f32> {
     }
 }
 
-impl<T: Lane> Add for Vec3<T> {
+impl<T: Real> Add for Vec3<T> {
     type Output = Self;
     #[inline(always)]
     fn add(self, o: Self) -> Self {
@@ -115,7 +116,7 @@ impl<T: Lane> Add for Vec3<T> {
     }
 }
 
-impl<T: Lane> Sub for Vec3<T> {
+impl<T: Real> Sub for Vec3<T> {
     type Output = Self;
     #[inline(always)]
     fn sub(self, o: Self) -> Self {
@@ -123,7 +124,7 @@ impl<T: Lane> Sub for Vec3<T> {
     }
 }
 
-impl<T: Lane> Neg for Vec3<T> {
+impl<T: Real> Neg for Vec3<T> {
     type Output = Self;
     #[inline(always)]
     fn neg(self) -> Self {
@@ -131,7 +132,7 @@ impl<T: Lane> Neg for Vec3<T> {
     }
 }
 
-impl<T: Lane> Mul<T> for Vec3<T> {
+impl<T: Real> Mul<T> for Vec3<T> {
     type Output = Self;
     #[inline(always)]
     fn mul(self, s: T) -> Self {

@@ -27,7 +27,7 @@ use super::vector::{
     dot_len_unit, dot_unit, each3, len_times_unit, length_sq, normalize, to_len, Len, Unit, V3,
 };
 use crate::pixel::HitRecord;
-use crate::spans::Span;
+use crate::runs::Span;
 use fixed::types::{I16F48, U16F16};
 
 /// What the kernel found for one pixel: linear colour in U16F16 (saturated) and the hit

@@ -11,12 +11,10 @@
 use super::kernel::ray;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
-use crate::encoding::{linear_code_fixed, pixel_from_codes, Encoding};
-use crate::pixel::{FixedShade, HitRecord, Pixel};
-use crate::render::{
-    check_segment, coverage_of, merge_runs, walk_runs, Background, Render, RenderError,
-};
-use crate::spans::Span;
+use crate::encoding::{linear_code_fixed, Encoding};
+use crate::pixel::{pixel_from_codes, FixedShade, HitRecord, Pixel};
+use crate::render::{check_segment, Render, RenderError};
+use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
 use fixed::types::I16F48;
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {

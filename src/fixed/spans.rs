@@ -25,7 +25,7 @@
 //! quadratic is ill-conditioned) spans the whole frame. `tests/fixed_agreement.rs` checks
 //! that spans change no pixel against testing every sphere at every pixel.
 
-use crate::spans::Span;
+use crate::runs::Span;
 use crate::vec3::Vec3;
 
 /// Pixels of widening on each side.

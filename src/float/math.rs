@@ -25,7 +25,8 @@
 //! `y` itself is an `f32`: its last-bit rounding, `|y|·6e-8`, becomes a relative error of
 //! `|y|·4e-8` after `2^y`.
 
-use crate::lane::Lane;
+use super::lane::Lane;
+use crate::brdf::Pow;
 
 const SQRT_2: f32 = core::f32::consts::SQRT_2;
 /// `2 / ln 2`: turns `atanh` into `log2`.
@@ -93,6 +94,15 @@ pub fn pow_clamped<L: Lane>(x: L, n: L) -> L {
     let xc = x.min(one).max(L::splat(f32::MIN_POSITIVE));
     let r = exp2_neg(n * log2(xc));
     L::select(positive, r, zero)
+}
+
+/// The lanes' power for [`crate::brdf`]: this module's `pow_clamped`, the same code at every
+/// width.
+impl<T: Lane> Pow for T {
+    #[inline(always)]
+    fn pow_clamped(x: Self, n: Self) -> Self {
+        pow_clamped(x, n)
+    }
 }
 
 #[cfg(test)]

@@ -9,21 +9,17 @@
 //!
 //! The lane width is a type parameter ([`Scalar`], [`Simd4`], [`Simd8`]) and changes only how
 //! many pixels one kernel call shades: the prepared numbers are the same at every width, which
-//! is half of why the paths agree bit for bit (the other half is [`crate::lane`]).
+//! is half of why the paths agree bit for bit (the other half is the lane trait, whose
+//! operations are all exactly specified: see `lane`). It also holds the per-row constants
+//! ([`Row`]) that the spans and the kernel's `ray` stage share.
 
+use super::lane::Lane;
 use crate::brdf::Params;
-use crate::lane::Lane;
 use crate::pixel::LinearRgb;
+use crate::render::{RenderError, MAX_DIMENSION};
 use crate::scene::{Light, Scene};
 use crate::vec3::Vec3;
-use crate::RenderError;
 use core::marker::PhantomData;
-
-/// Largest accepted image width or height, in pixels.
-///
-/// Pixel indices stay exact in `f32` far beyond this; the limit keeps `width × height`
-/// within `u32` and matches what a 16-bit display controller can address.
-pub const MAX_DIMENSION: u32 = 65_535;
 
 /// Arriving light is clamped to this, so that a point light sitting on a surface (distance
 /// zero) gives a huge but finite value, never `inf·0 = NaN`.
@@ -33,8 +29,6 @@ pub(crate) const MAX_ARRIVING: f32 = 1.0e30;
 pub trait FloatPath {
     /// The lane type: `f32`, `f32x4` or `f32x8`.
     type Lane: Lane;
-    /// A short name for reports (`"scalar"`, `"simd4"`, `"simd8"`).
-    const NAME: &'static str;
 }
 
 /// The scalar float path: one pixel per kernel call, `f32`. The float reference of the crate.
@@ -50,15 +44,12 @@ pub struct Simd8;
 
 impl FloatPath for Scalar {
     type Lane = f32;
-    const NAME: &'static str = "scalar";
 }
 impl FloatPath for Simd4 {
     type Lane = wide::f32x4;
-    const NAME: &'static str = "simd4";
 }
 impl FloatPath for Simd8 {
     type Lane = wide::f32x8;
-    const NAME: &'static str = "simd8";
 }
 
 /// A sphere's per-frame constants.
@@ -212,4 +203,28 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             _path: PhantomData,
         })
     }
+
+    /// Turns the scanline spans on (the default) or off. Off, every packet tests every sphere:
+    /// the naive per-pixel renderer, kept for benchmarks and for the test that spans change
+    /// no pixel.
+    pub fn with_spans(mut self, on: bool) -> Self {
+        self.use_spans = on;
+        self
+    }
+
+    /// The per-row constants of row `j`: camera-plane `y` is `(1 − 2(j + ½)/h)·tan(vfov/2)`.
+    #[inline]
+    pub(crate) fn row(&self, j: u32) -> Row {
+        let yc = (1.0 - (2.0 * (j as f32 + 0.5)) / self.height_f) * self.y_scale;
+        Row {
+            base: self.up.scale(yc) + self.forward,
+        }
+    }
+}
+
+/// Per-row constants: the camera-plane `y` term of every primary direction on row `j`.
+#[derive(Clone, Copy)]
+pub(crate) struct Row {
+    /// `y_j·up + forward`.
+    pub base: Vec3,
 }

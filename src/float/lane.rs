@@ -1,29 +1,26 @@
-//! The lane vocabulary the float kernel is written in: one trait, implemented for `f32` (one
-//! pixel), `wide::f32x4` and `wide::f32x8` (four or eight consecutive pixels of a row).
+//! The lane trait the float kernel is written in: [`Real`] (the numbers every formula uses)
+//! plus the operations only lanes have, implemented for `f32` (one pixel), `wide::f32x4`
+//! and `wide::f32x8` (four or eight consecutive pixels of a row).
 //!
 //! The scalar and SIMD paths are bit-identical because they run *the same kernel code* at
 //! different widths. That only holds if every rounding operation has the same IEEE-754 result
-//! in every implementation, so this trait is deliberately small and offers only operations
-//! whose results are exactly specified:
+//! in every implementation, so [`Real`] and this trait offer only operations whose results
+//! are exactly specified:
 //!
 //! | operation | scalar `f32` | `wide` lanes | why it is identical |
 //! |---|---|---|---|
 //! | `+ - * /` | IEEE | IEEE (`addps`, `divps`, …) | correctly rounded both ways |
-//! | [`Lane::sqrt`] | `libm::sqrtf` | `wide` `sqrt` (`sqrtps`) | both correctly rounded |
-//! | [`Lane::min`], [`Lane::max`] | compare + select | compare + select | defined by the same select, NaN and signed zeros included |
+//! | `sqrt` ([`Real`]) | `libm::sqrtf` | `wide` `sqrt` (`sqrtps`) | both correctly rounded |
+//! | `min`, `max` ([`Real`]) | compare + select | compare + select | defined by the same select, NaN and signed zeros included |
 //! | [`Lane::split_exponent`], [`Lane::pow2i`] | bit manipulation | integer lane ops | exact: no rounding at all |
 //!
 //! What is *not* here, on purpose: `mul_add` (fuses only with `+fma`, so it changes bits
 //! between builds), `recip`/`recip_sqrt` (≈12-bit approximations on x86), and any
 //! transcendental from `wide` or `micromath` (their algorithms differ from any scalar
-//! one). Transcendentals the kernel needs are built from these primitives in
-//! [`crate::float_math`], once, for every width.
-//!
-//! `core` has no `f32::sqrt` on stable, and `micromath`'s `sqrt` is an approximation (up to
-//! 6 % relative error, measured), which would break the one-level agreement with the f64
-//! reference; `libm::sqrtf` is correctly rounded, so the scalar lane uses it.
+//! one). The one transcendental the kernel needs, the specular `pow`, is built from these
+//! primitives in `math`, once, for every width.
 
-use core::ops::{Add, Div, Mul, Neg, Sub};
+use crate::real::Real;
 use wide::{f32x4, f32x8, i32x4, i32x8};
 
 /// A vector of `LANES` `f32` values processed together: one pixel per lane.
@@ -31,49 +28,22 @@ use wide::{f32x4, f32x8, i32x4, i32x8};
 /// Implemented for `f32`, [`wide::f32x4`] and [`wide::f32x8`]. Every method must give, lane
 /// for lane, the bits the `f32` implementation gives; the tests in `tests/paths_agree.rs`
 /// check that on whole frames.
-pub trait Lane:
-    Copy
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Mul<Output = Self>
-    + Div<Output = Self>
-    + Neg<Output = Self>
-{
-    /// A per-lane boolean: `bool` for one lane, an all-ones/all-zeros bit mask for SIMD.
-    type Mask: Copy;
+pub trait Lane: Real {
     /// How many pixels one value holds.
     const LANES: usize;
 
-    /// Every lane set to `v`.
-    fn splat(v: f32) -> Self;
     /// Lane `i` holds `start + i` (exact for the pixel indices a frame can have).
     fn ramp(start: f32) -> Self;
     /// The lanes in order, padded with zeros to 8 (the widest lane type).
     fn to_lanes(self) -> [f32; 8];
     /// Each lane truncated toward zero to an integer, padded with zeros to 8. Lanes must hold
-    /// values in `i32` range (the encode stage passes `[0.5, 65535.5]`).
+    /// values in `i32` range (the encode step passes `[0.5, 65536.5]`).
     fn trunc_lanes(self) -> [i32; 8];
     /// Lane `i`'s value (`i` taken modulo the lane count).
     #[inline(always)]
     fn lane(self, i: usize) -> f32 {
         self.to_lanes()[i % Self::LANES]
     }
-    /// Correctly rounded square root.
-    fn sqrt(self) -> Self;
-    /// Per-lane `self < rhs` (false if either is NaN).
-    fn lt(self, rhs: Self) -> Self::Mask;
-    /// Per-lane `self <= rhs` (false if either is NaN).
-    fn le(self, rhs: Self) -> Self::Mask;
-    /// Per-lane choice: `if_true` where `mask` is set, else `if_false`.
-    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
-    /// Lane-wise AND of two masks.
-    fn and(a: Self::Mask, b: Self::Mask) -> Self::Mask;
-    /// Lane-wise OR of two masks.
-    fn or(a: Self::Mask, b: Self::Mask) -> Self::Mask;
-    /// Lane-wise AND-NOT: set where `a` is set and `b` is not.
-    fn and_not(a: Self::Mask, b: Self::Mask) -> Self::Mask;
-    /// True if any lane of `mask` is set.
-    fn any(mask: Self::Mask) -> bool;
     /// Lane `i` of the mask is bit `i` of the result.
     fn bitmask(mask: Self::Mask) -> u32;
     /// Splits a positive, normal `self` into `(m, e)` with `self = m · 2^e`, `m` in `[1, 2)`,
@@ -83,17 +53,6 @@ pub trait Lane:
     /// `2^k` for integer-valued `k` in `[-126, 127]`. Exact. Other lanes: unspecified but
     /// deterministic.
     fn pow2i(k: Self) -> Self;
-
-    /// Per-lane minimum, defined as `if rhs < self { rhs } else { self }` at every width.
-    #[inline(always)]
-    fn min(self, rhs: Self) -> Self {
-        Self::select(rhs.lt(self), rhs, self)
-    }
-    /// Per-lane maximum, defined as `if self < rhs { rhs } else { self }` at every width.
-    #[inline(always)]
-    fn max(self, rhs: Self) -> Self {
-        Self::select(self.lt(rhs), rhs, self)
-    }
 }
 
 const EXP_BIAS: i32 = 127;
@@ -101,13 +60,8 @@ const MANTISSA_MASK: u32 = 0x007f_ffff;
 const ONE_BITS: u32 = 0x3f80_0000;
 
 impl Lane for f32 {
-    type Mask = bool;
     const LANES: usize = 1;
 
-    #[inline(always)]
-    fn splat(v: f32) -> Self {
-        v
-    }
     #[inline(always)]
     fn ramp(start: f32) -> Self {
         start
@@ -119,42 +73,6 @@ impl Lane for f32 {
     #[inline(always)]
     fn trunc_lanes(self) -> [i32; 8] {
         [self as i32, 0, 0, 0, 0, 0, 0, 0]
-    }
-    #[inline(always)]
-    fn sqrt(self) -> Self {
-        libm::sqrtf(self)
-    }
-    #[inline(always)]
-    fn lt(self, rhs: Self) -> bool {
-        self < rhs
-    }
-    #[inline(always)]
-    fn le(self, rhs: Self) -> bool {
-        self <= rhs
-    }
-    #[inline(always)]
-    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
-        if mask {
-            if_true
-        } else {
-            if_false
-        }
-    }
-    #[inline(always)]
-    fn and(a: bool, b: bool) -> bool {
-        a & b
-    }
-    #[inline(always)]
-    fn or(a: bool, b: bool) -> bool {
-        a | b
-    }
-    #[inline(always)]
-    fn and_not(a: bool, b: bool) -> bool {
-        a & !b
-    }
-    #[inline(always)]
-    fn any(mask: bool) -> bool {
-        mask
     }
     #[inline(always)]
     fn bitmask(mask: bool) -> u32 {
@@ -178,13 +96,8 @@ impl Lane for f32 {
 macro_rules! wide_lane {
     ($t:ty, $i:ty, $n:expr, $from_int:ident) => {
         impl Lane for $t {
-            type Mask = $t;
             const LANES: usize = $n;
 
-            #[inline(always)]
-            fn splat(v: f32) -> Self {
-                <$t>::splat(v)
-            }
             #[inline(always)]
             fn ramp(start: f32) -> Self {
                 // `start + i` is exact for pixel indices (integers + ½ far below 2^23), so
@@ -212,38 +125,6 @@ macro_rules! wide_lane {
                 out
             }
             #[inline(always)]
-            fn sqrt(self) -> Self {
-                <$t>::sqrt(self)
-            }
-            #[inline(always)]
-            fn lt(self, rhs: Self) -> Self {
-                self.simd_lt(rhs)
-            }
-            #[inline(always)]
-            fn le(self, rhs: Self) -> Self {
-                self.simd_le(rhs)
-            }
-            #[inline(always)]
-            fn select(mask: Self, if_true: Self, if_false: Self) -> Self {
-                mask.select(if_true, if_false)
-            }
-            #[inline(always)]
-            fn and(a: Self, b: Self) -> Self {
-                a & b
-            }
-            #[inline(always)]
-            fn or(a: Self, b: Self) -> Self {
-                a | b
-            }
-            #[inline(always)]
-            fn and_not(a: Self, b: Self) -> Self {
-                a & !b
-            }
-            #[inline(always)]
-            fn any(mask: Self) -> bool {
-                mask.any()
-            }
-            #[inline(always)]
             fn bitmask(mask: Self) -> u32 {
                 mask.to_bitmask()
             }
@@ -266,7 +147,6 @@ macro_rules! wide_lane {
 
 wide_lane!(f32x4, i32x4, 4, from_i32x4);
 wide_lane!(f32x8, i32x8, 8, from_i32x8);
-
 #[cfg(test)]
 mod tests {
     use super::*;

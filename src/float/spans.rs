@@ -27,17 +27,9 @@
 //! All of it is per row and per sphere in `f32`: a few dozen operations, against thousands
 //! per pixel row.
 
-use crate::prepare::{FloatPath, Prepared};
+use super::prepare::{FloatPath, Prepared};
+use crate::runs::Span;
 use crate::vec3::Vec3;
-
-/// The half-open pixel range `[start, end)` of a row that one sphere may cover.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub struct Span {
-    /// First pixel that may be covered.
-    pub start: u32,
-    /// One past the last pixel that may be covered (`start < end ≤ width`).
-    pub end: u32,
-}
 
 /// Pixels of widening on each side of an analytic span.
 const MARGIN_PIXELS: f32 = 2.0;

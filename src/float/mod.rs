@@ -1,0 +1,29 @@
+//! The float paths: `f32`, one pixel at a time ([`Scalar`]) or in SIMD lanes ([`Simd4`],
+//! [`Simd8`]), from one kernel written once over a lane type.
+//!
+//! The files mirror the fixed path's (`src/fixed/`), one concept each, in the order a row
+//! flows through them:
+//!
+//! | file | what it holds |
+//! |---|---|
+//! | `prepare` | [`Prepared`] and its per-frame constants; the width markers; per-row constants |
+//! | `spans` | each sphere's analytic, conservative pixel span on a row |
+//! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
+//! | `kernel` | the per-pixel stages: `ray`, `hit`, `normal`, `lights` (`incoming`, `shadow`, `diffuse`, `specular`), `combine` |
+//! | `lane` | the lane trait: [`Real`](crate::real::Real) plus the operations only lanes have, each exactly specified |
+//! | `math` | the specular `pow`, identical at every width |
+//!
+//! Scalar and SIMD differ only in the lane type, and every operation the kernel uses has the
+//! same IEEE-754 result at every width, so their frames are bit-identical
+//! (`tests/paths_agree.rs`, `tests/models_agree.rs`, also on the SSE2 baseline and on aarch64).
+
+mod kernel;
+mod lane;
+mod math;
+mod prepare;
+mod row;
+mod spans;
+
+#[doc(hidden)]
+pub use lane::Lane;
+pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8};

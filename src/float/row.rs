@@ -1,0 +1,152 @@
+//! The row driver of the float paths: [`Render`] for [`Prepared`].
+//!
+//! For row `y` it computes every sphere's span ([`Prepared::row_spans`]), merges them into
+//! covered runs and walks them with the shared [`walk_runs`]: the background outside the runs,
+//! encoded once per row, and inside each run packets of the path's lane count, each handed
+//! to the kernel ([`Prepared::shade`]) with only the spheres whose spans touch the packet. The
+//! last packet of a run computes full lanes and stores only the pixels that belong to the
+//! run: no per-lane branch in the math, no read or write outside the caller's slice. Then
+//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format.
+//!
+//! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
+//! on any number of threads, or streamed to a display one line buffer at a time.
+
+use super::kernel::Packet;
+use super::lane::Lane;
+use super::prepare::{FloatPath, Prepared};
+use crate::encoding::{linear_code, luma, quantize_lanes, Encoding};
+use crate::pixel::{pixel_from_codes, HitRecord, LinearRgb, Pixel, Shade};
+use crate::render::{check_segment, Render, RenderError};
+use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
+
+impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    fn background_pixel<P: Pixel>(&self, encoding: Encoding, x: u32, y: u32) -> P {
+        if !encoding.is_default() {
+            let c = self.background;
+            let codes = [linear_code(c.r), linear_code(c.g), linear_code(c.b)];
+            if let Some(px) = pixel_from_codes(codes, encoding, x, y) {
+                return px;
+            }
+        }
+        P::encode(&Shade {
+            color: self.background,
+            hit: HitRecord::default(),
+        })
+    }
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> {
+    fn width(&self) -> u32 {
+        self.width
+    }
+
+    fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn row_coverage(&self, y: u32) -> Option<Span> {
+        coverage_of(&self.row_spans(y))
+    }
+
+    fn render_segment_with<P: Pixel>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) -> Result<(), RenderError> {
+        check_segment(y, x, out.len(), self.width, self.height)?;
+        let lanes = W::Lane::LANES;
+        let row = self.row(y);
+        let spans = self.row_spans(y);
+        let runs = merge_runs::<S>(&spans);
+        let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
+        walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
+            for (chunk_index, chunk) in run_pixels.chunks_mut(lanes).enumerate() {
+                let x0 = (start + chunk_index * lanes) as u32;
+                let x1 = x0 + chunk.len() as u32;
+                let mut candidates: heapless::Vec<u16, S> = heapless::Vec::new();
+                for (k, span) in spans.iter().enumerate() {
+                    if let Some(s) = span {
+                        if s.start < x1 && x0 < s.end {
+                            let _ = candidates.push(k as u16);
+                        }
+                    }
+                }
+                if candidates.is_empty() {
+                    background.fill(chunk, x0 as usize);
+                    continue;
+                }
+                let packet = self.shade(&row, x0, &candidates, P::NEEDS_HITS);
+                store_packet(chunk, &packet, encoding, x0, y);
+            }
+        });
+        Ok(())
+    }
+}
+
+/// `encode` for the float paths: writes the first `chunk.len()` lanes of a packet whose
+/// first pixel is `(x0, y)`.
+///
+/// With [`Encoding::LINEAR`], formats with levels are quantized a packet at a time with
+/// [`quantize_lanes`], the rule of [`quantize`](crate::encoding::quantize) (clamp with NaN to
+/// 0, `c·max + ½`, truncate; [`Gray8`](crate::Gray8) on the [`luma`]), so every width stores
+/// the bits the scalar path stores. Other encodings compute the linear codes a packet at a
+/// time ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
+/// ([`crate::encoding`]).
+#[inline(always)]
+fn store_packet<P: Pixel, T: Lane>(
+    chunk: &mut [P],
+    packet: &Packet<T>,
+    encoding: Encoding,
+    x0: u32,
+    y: u32,
+) {
+    let c = packet.color;
+    if let Some(max) = P::LEVELS {
+        if encoding.is_default() {
+            if P::GRAY {
+                let l = quantize_lanes(luma([c.x, c.y, c.z]), max[0] as f32).trunc_lanes();
+                for (px, l) in chunk.iter_mut().zip(&l) {
+                    *px = P::from_levels([*l as u16; 3]);
+                }
+                return;
+            }
+            let r = quantize_lanes(c.x, max[0] as f32).trunc_lanes();
+            let g = quantize_lanes(c.y, max[1] as f32).trunc_lanes();
+            let b = quantize_lanes(c.z, max[2] as f32).trunc_lanes();
+            for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
+                *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
+            }
+            return;
+        }
+        // Linear codes, `⌊clamp(c)·65536 + ½⌋`, then the encoding's integer rule per pixel.
+        let r = quantize_lanes(c.x, 65536.0).trunc_lanes();
+        let g = quantize_lanes(c.y, 65536.0).trunc_lanes();
+        let b = quantize_lanes(c.z, 65536.0).trunc_lanes();
+        let codes = r.iter().zip(&g).zip(&b);
+        for ((px, ((r, g), b)), x) in chunk.iter_mut().zip(codes).zip(x0..) {
+            if let Some(p) = pixel_from_codes([*r as u32, *g as u32, *b as u32], encoding, x, y) {
+                *px = p;
+            }
+        }
+        return;
+    }
+    let (r, g, b) = (
+        packet.color.x.to_lanes(),
+        packet.color.y.to_lanes(),
+        packet.color.z.to_lanes(),
+    );
+    let spheres = packet.sphere.to_lanes();
+    let lanes = r.iter().zip(&g).zip(&b).zip(&spheres).zip(&packet.shadowed);
+    for (px, ((((r, g), b), sphere), shadowed)) in chunk.iter_mut().zip(lanes) {
+        let hit = *sphere >= 0.0;
+        *px = P::encode(&Shade {
+            color: LinearRgb::new(*r, *g, *b),
+            hit: HitRecord {
+                sphere: hit.then_some(*sphere as u16),
+                shadowed: if hit { *shadowed } else { 0 },
+            },
+        });
+    }
+}
