@@ -21,17 +21,22 @@ use common::expected::HEIGHT;
 use common::expected::{FIXED_RGB565_CRC32, WIDTH};
 use common::{Outcome, Session, Sink};
 use cortex_m_rt::entry;
-use shadeline::{exponent_series, PreparedFixed, Rgb565, Scene};
+use shadeline::{exponent_series, PreparedFixed, Rgb565, Scene, SceneError};
 
 /// The nRF51's processor clock as QEMU models it, which clocks SysTick: 16 MHz.
 const HCLK_HZ: u32 = 16_000_000;
+
+/// The scene's capacities: the exponent series' 5 spheres and 1 light, rather than the
+/// default 16 and 8, so the scene and its prepared frame take a third of the RAM.
+const SPHERES: usize = 5;
+const LIGHTS: usize = 1;
 
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut`s owned by `main`: statics, no unsafe.
     static mut LINE: [Rgb565; WIDTH as usize] = [Rgb565(0); WIDTH as usize];
-    static mut SCENE: Option<Scene> = None;
-    static mut FIXED: Option<PreparedFixed> = None;
+    static mut SCENE: Option<Scene<SPHERES, LIGHTS>> = None;
+    static mut FIXED: Option<PreparedFixed<SPHERES, LIGHTS>> = None;
 
     let board = CortexMBoard::new("m0");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -41,7 +46,7 @@ fn main() -> ! {
     let Some(mut session) = Session::new(board, counter) else {
         exit(false)
     };
-    let (Some(scene), _) = session.build(SCENE, exponent_series) else {
+    let (Some(scene), _) = session.build(SCENE, sized_exponent_series) else {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
@@ -55,4 +60,18 @@ fn main() -> ! {
         }
     }
     exit(session.finish() == Outcome::Pass)
+}
+
+/// The exponent series preset, copied into a scene of this firmware's capacities (the
+/// preset's own, at the default capacities, lives only on the stack of this copy).
+fn sized_exponent_series() -> Result<Scene<SPHERES, LIGHTS>, SceneError> {
+    let preset = exponent_series()?;
+    let mut scene = Scene::new(*preset.camera(), preset.background())?;
+    for &sphere in preset.spheres() {
+        scene.add_sphere(sphere)?;
+    }
+    for &light in preset.lights() {
+        scene.add_light(light)?;
+    }
+    Ok(scene)
 }
