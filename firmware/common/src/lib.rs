@@ -7,7 +7,7 @@
 //! | [`text`] | a fixed-size line with hand-written integer formatting (no `core::fmt`) |
 //! | [`stack`] | painting the free stack and finding the deepest word the render touched |
 //! | [`meter`] | instruction counting with the counter's own cost calibrated out |
-//! | [`run`] | one path end to end: render, measure, CRC, report |
+//! | [`run`] | one path end to end: build in place, prepare and render measured, CRC, report |
 //! | `cortex_m_board` | SysTick counter, semihosting, stack limits (Cortex-M targets only) |
 //! | [`expected`] | the frame size and the CRCs to match (`firmware/expected.rs`) |
 //!

@@ -1,19 +1,27 @@
-//! One rendering path end to end on a board: count covered pixels, render the frame with
-//! every row measured, CRC it, report one line.
+//! One rendering path end to end on a board: build its scene and prepared frame, count
+//! covered pixels, render the frame with every row measured, CRC it, report one line.
+//!
+//! [`Session::build`] makes a value (the scene, a prepared frame) in place in a caller's slot
+//! — a `static` on the small boards, so nothing large is moved or copied through the stack
+//! afterwards — in one measured region: the instructions of `Prepared…::new` are the
+//! `prepare=` figure of the path's line, measured exactly like a row.
 //!
 //! The order keeps everything that is not the render out of the measured regions: the
-//! covered-pixel count renders the frame once more into [`HitRecord`]s before the stack is
-//! painted and is never measured; the CRC is taken after each measured row (streaming) or
+//! covered-pixel count renders the frame once more into [`HitRecord`]s, a short segment at a
+//! time, and is never measured; the CRC is taken after each measured row (streaming) or
 //! after the frame (framebuffer); the report is formatted after everything. Each measured
 //! region is exactly one `render_line` call, so "instructions per frame" means the same
-//! thing whether rows go to a framebuffer or to a line buffer, on every board.
+//! thing whether rows go to a framebuffer or to a line buffer, on every board. The stack of
+//! every stage (build, count, render) is painted and counts toward the session's
+//! `peak_stack`.
 //!
 //! The report is one line of `key=value` fields after a `shadeline-fw` tag, which
 //! `.ci/firmware` parses into the figures table:
 //!
 //! ```text
 //! shadeline-fw firmware=m0 path=fixed sink=line crc=0x… expected=0x… match=yes
-//!   instructions=… pixels=76800 per_pixel=… covered=… per_covered=… stack=… render_stack=…
+//!   instructions=… pixels=76800 per_pixel=… covered=… per_covered=… prepare=… stack=…
+//!   render_stack=…
 //! ```
 
 use crate::crc32::Crc32;
@@ -118,19 +126,40 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         Some(session)
     }
 
-    /// Renders `path` into `sink`, measures it and reports it against `expected`.
-    /// `hits` is a `width`-long scratch row for counting covered pixels.
+    /// Builds a value with `make` into `slot` in one measured region, and returns it with
+    /// the instructions `make` took (`None` if the count is inexact). The value is `None` if
+    /// `make` fails. The build's stack counts toward the session's peak.
+    ///
+    /// `slot` is where the value lives for the rest of the program (on the small boards a
+    /// `static`): writing it in the region means the value is not moved again afterwards.
+    pub fn build<'s, T, E>(
+        &mut self,
+        slot: &'s mut Option<T>,
+        make: impl FnOnce() -> Result<T, E>,
+    ) -> (Option<&'s T>, Option<u64>) {
+        let (lowest, top) = self.board.stack_limits();
+        let paint_top = self.paint();
+        let ((), instructions) = self.meter.measure(|| *slot = make().ok());
+        self.note_stack(lowest, paint_top, top);
+        (slot.as_ref(), instructions)
+    }
+
+    /// Renders `path` into `sink`, measures it and reports it against `expected`, with
+    /// `prepare` (from [`Session::build`]) as the instructions of its prepare.
     pub fn run<R: Render>(
         &mut self,
         path_name: &str,
         path: &R,
         mut sink: Sink<'_>,
-        hits: &mut [HitRecord],
+        prepare: Option<u64>,
         expected: u32,
     ) {
         let sink_name = sink.name();
         let board_name = self.board.name();
-        let figures = self.figures(path, &mut sink, hits);
+        let figures = self.figures(path, &mut sink);
+        if prepare.is_none() {
+            self.outcome = Outcome::Fail;
+        }
         let pixels = u64::from(path.width()) * u64::from(path.height());
         let matched = figures.render_ok && figures.crc == expected;
         if !matched || figures.instructions.is_none() {
@@ -162,6 +191,10 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
                 line.str(" instructions=unknown");
             }
         }
+        match prepare {
+            Some(n) => line.field("prepare", n),
+            None => line.str(" prepare=unknown"),
+        };
         line.field("stack", figures.stack as u64)
             .field("render_stack", figures.render_stack as u64)
             .byte(b'\n');
@@ -194,12 +227,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         self.outcome = Outcome::Fail;
     }
 
-    fn figures<R: Render>(
-        &mut self,
-        path: &R,
-        sink: &mut Sink<'_>,
-        hits: &mut [HitRecord],
-    ) -> Figures {
+    fn figures<R: Render>(&mut self, path: &R, sink: &mut Sink<'_>) -> Figures {
         let (lowest, top) = self.board.stack_limits();
         if self.board.stack_pointer() < lowest + stack::GUARD {
             // Already below the stack's limit: painting would hit live data, and any figure
@@ -210,7 +238,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
 
         // Covered pixels: not measured, but its stack counts toward the session's peak.
         let paint_top = self.paint();
-        let covered = count_covered(path, hits);
+        let covered = count_covered(path);
         self.note_stack(lowest, paint_top, top);
 
         let paint_top = self.paint();
@@ -295,13 +323,28 @@ fn render_streamed<C: InstructionCounter, R: Render>(
     (ok, total, crc.value())
 }
 
-/// Pixels whose primary ray hits a sphere, found by rendering the frame into hit records.
+/// Hit records per segment of [`count_covered`]: 256 bytes of stack.
+const COVER_SEGMENT: usize = 32;
+
+/// Pixels whose primary ray hits a sphere, found by rendering each row's coverage into hit
+/// records one short segment at a time (a pixel does not depend on how a row is cut), so
+/// the count needs no row-long buffer.
 #[inline(never)]
-fn count_covered<R: Render>(path: &R, hits: &mut [HitRecord]) -> u64 {
+fn count_covered<R: Render>(path: &R) -> u64 {
+    let mut hits = [HitRecord::default(); COVER_SEGMENT];
     let mut covered = 0;
     for y in 0..path.height() {
-        if path.render_line(y, hits).is_ok() {
-            covered += hits.iter().filter(|h| h.sphere.is_some()).count() as u64;
+        let Some(span) = path.row_coverage(y) else {
+            continue;
+        };
+        let mut x = span.start;
+        while x < span.end {
+            let n = (span.end - x).min(COVER_SEGMENT as u32);
+            let segment = hits.get_mut(..n as usize).unwrap_or(&mut []);
+            if path.render_segment(y, x, segment).is_ok() {
+                covered += segment.iter().filter(|h| h.sphere.is_some()).count() as u64;
+            }
+            x += n;
         }
     }
     covered

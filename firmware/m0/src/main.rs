@@ -4,9 +4,10 @@
 //! over semihosting with the instruction count and stack high-water mark; exits 0 only if
 //! the CRC matches.
 //!
-//! What has to fit in the 16 KiB: the scene and the prepared frame (on `main`'s stack), the
-//! 640-byte line buffer and the 2.5 KiB hit-record row used to count covered pixels (both in
-//! `.bss`), and the render's own stack. The report's `peak_stack` plus `llvm-size`'s
+//! What has to fit in the 16 KiB: the scene, the prepared frame and the 640-byte line buffer
+//! (all three `static`: each is built in place and never moved), and the stack of the
+//! deepest stage — building the scene, preparing the frame, counting covered pixels (a few
+//! hit records at a time) or rendering a row. The report's `peak_stack` plus `llvm-size`'s
 //! `.data + .bss` is the RAM it needs.
 //!
 //! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
@@ -20,19 +21,22 @@ use common::expected::HEIGHT;
 use common::expected::{FIXED_RGB565_CRC32, WIDTH};
 use common::{Outcome, Session, Sink};
 use cortex_m_rt::entry;
-use shadeline::{exponent_series, HitRecord, PreparedFixed, Rgb565};
+use shadeline::{exponent_series, PreparedFixed, Rgb565, Scene, SceneError};
 
 /// The nRF51's processor clock as QEMU models it, which clocks SysTick: 16 MHz.
 const HCLK_HZ: u32 = 16_000_000;
 
+/// The scene's capacities: the exponent series' 5 spheres and 1 light, rather than the
+/// default 16 and 8, so the scene and its prepared frame take a third of the RAM.
+const SPHERES: usize = 5;
+const LIGHTS: usize = 1;
+
 #[entry]
 fn main() -> ! {
-    // cortex-m-rt turns these into `&'static mut`s owned by `main`: in .bss, no unsafe.
+    // cortex-m-rt turns these into `&'static mut`s owned by `main`: statics, no unsafe.
     static mut LINE: [Rgb565; WIDTH as usize] = [Rgb565(0); WIDTH as usize];
-    static mut HITS: [HitRecord; WIDTH as usize] = [HitRecord {
-        sphere: None,
-        shadowed: 0,
-    }; WIDTH as usize];
+    static mut SCENE: Option<Scene<SPHERES, LIGHTS>> = None;
+    static mut FIXED: Option<PreparedFixed<SPHERES, LIGHTS>> = None;
 
     let board = CortexMBoard::new("m0");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -42,16 +46,32 @@ fn main() -> ! {
     let Some(mut session) = Session::new(board, counter) else {
         exit(false)
     };
-    let Ok(scene) = exponent_series() else {
+    let (Some(scene), _) = session.build(SCENE, sized_exponent_series) else {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
-    match PreparedFixed::new(&scene, WIDTH, HEIGHT) {
-        Ok(path) => session.run("fixed", &path, Sink::Line(LINE), HITS, FIXED_RGB565_CRC32),
-        Err(_) => {
+    match session.build(FIXED, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
+        (Some(path), prepare) => {
+            session.run("fixed", path, Sink::Line(LINE), prepare, FIXED_RGB565_CRC32)
+        }
+        (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
             session.fail();
         }
     }
     exit(session.finish() == Outcome::Pass)
+}
+
+/// The exponent series preset, copied into a scene of this firmware's capacities (the
+/// preset's own, at the default capacities, lives only on the stack of this copy).
+fn sized_exponent_series() -> Result<Scene<SPHERES, LIGHTS>, SceneError> {
+    let preset = exponent_series()?;
+    let mut scene = Scene::new(*preset.camera(), preset.background())?;
+    for &sphere in preset.spheres() {
+        scene.add_sphere(sphere)?;
+    }
+    for &light in preset.lights() {
+        scene.add_light(light)?;
+    }
+    Ok(scene)
 }

@@ -13,7 +13,7 @@ use common::cortex_m_board::{exit, CortexMBoard, SysTickCounter};
 use common::expected::{FIXED_RGB565_CRC32, HEIGHT, SCALAR_RGB565_CRC32, WIDTH};
 use common::{Outcome, Session, Sink};
 use cortex_m_rt::entry;
-use shadeline::{exponent_series, HitRecord, Prepared, PreparedFixed, Rgb565, Scalar};
+use shadeline::{exponent_series, Prepared, PreparedFixed, Rgb565, Scalar, Scene};
 
 /// mps2-an386's processor clock, which clocks SysTick: 25 MHz.
 const SYSCLK_HZ: u32 = 25_000_000;
@@ -22,9 +22,12 @@ const PIXELS: usize = (WIDTH * HEIGHT) as usize;
 
 #[entry]
 fn main() -> ! {
-    // cortex-m-rt turns this into a `&'static mut` owned by `main`: one framebuffer, no
-    // unsafe, zeroed with .bss.
+    // cortex-m-rt turns these into `&'static mut`s owned by `main`, no unsafe: one
+    // framebuffer (zeroed with .bss), the scene and both prepared frames, each built in place.
     static mut FRAME: [Rgb565; PIXELS] = [Rgb565(0); PIXELS];
+    static mut SCENE: Option<Scene> = None;
+    static mut SCALAR: Option<Prepared<Scalar>> = None;
+    static mut FIXED: Option<PreparedFixed> = None;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -34,34 +37,32 @@ fn main() -> ! {
     let Some(mut session) = Session::new(board, counter) else {
         exit(false)
     };
-    let mut hits = [HitRecord::default(); WIDTH as usize];
-
-    let Ok(scene) = exponent_series() else {
+    let (Some(scene), _) = session.build(SCENE, exponent_series) else {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
-    match Prepared::<Scalar>::new(&scene, WIDTH, HEIGHT) {
-        Ok(path) => session.run(
+    match session.build(SCALAR, || Prepared::<Scalar>::new(scene, WIDTH, HEIGHT)) {
+        (Some(path), prepare) => session.run(
             "scalar",
-            &path,
+            path,
             Sink::Frame(FRAME),
-            &mut hits,
+            prepare,
             SCALAR_RGB565_CRC32,
         ),
-        Err(_) => {
+        (None, _) => {
             session.note("shadeline-fw error=prepare-scalar\n");
             session.fail();
         }
     }
-    match PreparedFixed::new(&scene, WIDTH, HEIGHT) {
-        Ok(path) => session.run(
+    match session.build(FIXED, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
+        (Some(path), prepare) => session.run(
             "fixed",
-            &path,
+            path,
             Sink::Frame(FRAME),
-            &mut hits,
+            prepare,
             FIXED_RGB565_CRC32,
         ),
-        Err(_) => {
+        (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
             session.fail();
         }

@@ -16,14 +16,13 @@ use board::{exit, Minstret, Rv32Board};
 use common::expected::{FIXED_RGB565_CRC32, HEIGHT, SCALAR_RGB565_CRC32, WIDTH};
 use common::{Outcome, Session, Sink};
 use riscv_rt::entry;
-use shadeline::{exponent_series, HitRecord, Prepared, PreparedFixed, Rgb565, Scalar};
+use shadeline::{exponent_series, Prepared, PreparedFixed, Rgb565, Scalar, Scene};
 
 const PIXELS: usize = (WIDTH * HEIGHT) as usize;
 
-/// Both paths' frames and the hit-record row, in `.bss`.
+/// The framebuffer both paths render into, in `.bss`.
 struct Buffers {
     frame: [Rgb565; PIXELS],
-    hits: [HitRecord; WIDTH as usize],
 }
 
 #[entry]
@@ -32,32 +31,40 @@ fn main() -> ! {
     let Some(mut session) = Session::new(Rv32Board::new(), Minstret) else {
         exit(false)
     };
-    let Ok(scene) = exponent_series() else {
+    let frame = &mut buffers.frame;
+    // The scene and both prepared frames: slots on `main`'s stack (this board's stack has
+    // 64 KiB), each built in place by `Session::build` and never moved.
+    let mut scene_slot: Option<Scene> = None;
+    let mut scalar_slot: Option<Prepared<Scalar>> = None;
+    let mut fixed_slot: Option<PreparedFixed> = None;
+    let (Some(scene), _) = session.build(&mut scene_slot, exponent_series) else {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
-    match Prepared::<Scalar>::new(&scene, WIDTH, HEIGHT) {
-        Ok(path) => session.run(
+    match session.build(&mut scalar_slot, || {
+        Prepared::<Scalar>::new(scene, WIDTH, HEIGHT)
+    }) {
+        (Some(path), prepare) => session.run(
             "scalar",
-            &path,
-            Sink::Frame(&mut buffers.frame),
-            &mut buffers.hits,
+            path,
+            Sink::Frame(frame),
+            prepare,
             SCALAR_RGB565_CRC32,
         ),
-        Err(_) => {
+        (None, _) => {
             session.note("shadeline-fw error=prepare-scalar\n");
             session.fail();
         }
     }
-    match PreparedFixed::new(&scene, WIDTH, HEIGHT) {
-        Ok(path) => session.run(
+    match session.build(&mut fixed_slot, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
+        (Some(path), prepare) => session.run(
             "fixed",
-            &path,
-            Sink::Frame(&mut buffers.frame),
-            &mut buffers.hits,
+            path,
+            Sink::Frame(frame),
+            prepare,
             FIXED_RGB565_CRC32,
         ),
-        Err(_) => {
+        (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
             session.fail();
         }
@@ -69,10 +76,6 @@ fn main() -> ! {
 /// the stack first and overflow it; riscv-rt's `entry` has no `static mut` conversion.)
 static mut BUFFERS: Buffers = Buffers {
     frame: [Rgb565(0); PIXELS],
-    hits: [HitRecord {
-        sphere: None,
-        shadowed: 0,
-    }; WIDTH as usize],
 };
 
 /// The buffers as the one `&'static mut` the program ever makes of them.
