@@ -162,7 +162,7 @@ where
     shade(frame, 0, first);
     let mut transfer = single_buffer::Config::new(ch, first, spi).start();
     shade(frame, 2, ahead);
-    // Each pass starts with row `y` on the wire and row `y + 2` shaded in `ahead`.
+    // Each pass starts with row `y` on the wire and row `y + 2` (if any) shaded in `ahead`.
     let mut y = 0;
     loop {
         let (row, theirs) = SHADED.take();
