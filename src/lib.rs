@@ -134,7 +134,9 @@ pub use float::{FloatPath, Prepared, Scalar, Simd4, Simd8};
 pub use pixel::{
     Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
 };
-pub use presets::{exponent_series, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE};
+pub use presets::{
+    exponent_series, exponent_series_with_capacity, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE,
+};
 pub use render::{Encoded, Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
 pub use runs::Span;
 pub use scene::{

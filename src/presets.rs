@@ -18,6 +18,21 @@ pub const EXPONENT_SERIES_SIZE: (u32, u32) = (1024, 747);
 /// Returns a `Result` rather than panicking, so firmware that links it keeps no panic path;
 /// with these numbers it is always `Ok`.
 pub fn exponent_series() -> Result<Scene, SceneError> {
+    exponent_series_with_capacity()
+}
+
+/// [`exponent_series`] built straight into a scene of capacities `S` spheres and `L` lights,
+/// for firmware that sizes its scene and prepared frame to what it draws (at least 5 and 1;
+/// smaller capacities give [`SceneError`] naming the sphere or light that does not fit).
+///
+/// ```
+/// use shadeline::{exponent_series_with_capacity, PreparedFixed, Scene};
+/// let scene: Scene<5, 1> = exponent_series_with_capacity()?;
+/// let frame = PreparedFixed::new(&scene, 320, 240)?;
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn exponent_series_with_capacity<const S: usize, const L: usize>(
+) -> Result<Scene<S, L>, SceneError> {
     let camera = Camera {
         position: Vec3::new(0.0, 1.0, 12.0),
         look_at: Vec3::new(0.0, 1.0, 0.0),

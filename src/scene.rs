@@ -753,6 +753,15 @@ impl<const S: usize, const L: usize> Scene<S, L> {
             return 0;
         };
         let eps = self.ray_epsilon();
+        // The half-line or segment `C + t·s`: `t ≥ 0` toward a distant light (`|s| = 1`),
+        // `0 ≤ t ≤ 1` up to a point light.
+        let (s, t_max) = match *light {
+            Light::Distant { direction, .. } => {
+                ((-direction).normalized().unwrap_or_default(), f32::INFINITY)
+            }
+            Light::Point { position, .. } => (position - own.center, 1.0),
+        };
+        let ss = s.dot(s);
         let mut mask = 0u32;
         for (j, other) in spheres.iter().enumerate().take(32) {
             if j == i {
@@ -760,22 +769,12 @@ impl<const S: usize, const L: usize> Scene<S, L> {
             }
             let v = other.center - own.center;
             // The point of the half-line or segment closest to the other centre.
-            let closest = match *light {
-                Light::Distant { direction, .. } => {
-                    let u = (-direction).normalized().unwrap_or_default();
-                    u.scale(v.dot(u).max(0.0))
-                }
-                Light::Point { position, .. } => {
-                    let s = position - own.center;
-                    let ss = s.dot(s);
-                    let t = if ss > 0.0 {
-                        (v.dot(s) / ss).clamp(0.0, 1.0)
-                    } else {
-                        0.0
-                    };
-                    s.scale(t)
-                }
+            let t = if ss > 0.0 {
+                (v.dot(s) / ss).clamp(0.0, t_max)
+            } else {
+                0.0
             };
+            let closest = s.scale(t);
             let w = v - closest;
             let radii = own.radius + other.radius;
             let reach = radii + eps + 4.0 * eps + 1.0e-3 * radii;

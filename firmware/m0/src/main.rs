@@ -21,7 +21,7 @@ use common::expected::HEIGHT;
 use common::expected::{FIXED_RGB565_CRC32, WIDTH};
 use common::{Outcome, Session, Sink};
 use cortex_m_rt::entry;
-use shadeline::{exponent_series, PreparedFixed, Rgb565, Scene, SceneError};
+use shadeline::{exponent_series_with_capacity, PreparedFixed, Rgb565, Scene};
 
 /// The nRF51's processor clock as QEMU models it, which clocks SysTick: 16 MHz.
 const HCLK_HZ: u32 = 16_000_000;
@@ -46,7 +46,7 @@ fn main() -> ! {
     let Some(mut session) = Session::new(board, counter) else {
         exit(false)
     };
-    let (Some(scene), _) = session.build(SCENE, sized_exponent_series) else {
+    let (Some(scene), _) = session.build(SCENE, exponent_series_with_capacity) else {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
@@ -60,18 +60,4 @@ fn main() -> ! {
         }
     }
     exit(session.finish() == Outcome::Pass)
-}
-
-/// The exponent series preset, copied into a scene of this firmware's capacities (the
-/// preset's own, at the default capacities, lives only on the stack of this copy).
-fn sized_exponent_series() -> Result<Scene<SPHERES, LIGHTS>, SceneError> {
-    let preset = exponent_series()?;
-    let mut scene = Scene::new(*preset.camera(), preset.background())?;
-    for &sphere in preset.spheres() {
-        scene.add_sphere(sphere)?;
-    }
-    for &light in preset.lights() {
-        scene.add_light(light)?;
-    }
-    Ok(scene)
 }
