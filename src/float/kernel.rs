@@ -272,16 +272,16 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// ([`Scene::shadow_casters`](crate::Scene)), as a mask over the first 32 spheres.
     #[inline(always)]
     fn casters_of(&self, hit_spheres: u32, light: usize) -> u32 {
-        self.casters
-            .iter()
-            .enumerate()
-            .fold(hit_spheres, |mask, (k, c)| {
-                let hit = hit_spheres & 1u32.checked_shl(k as u32).unwrap_or(0) != 0;
-                match c.get(light) {
-                    Some(c) if hit => mask | c,
-                    _ => mask,
-                }
-            })
+        let mut mask = hit_spheres;
+        let mut rest = hit_spheres;
+        while rest != 0 {
+            let k = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            if let Some(c) = self.casters.get(k).and_then(|c| c.get(light)) {
+                mask |= c;
+            }
+        }
+        mask
     }
 
     /// `shadow`: the lanes where a sphere lies between `P + ε·N` and the light. Only the
