@@ -1,4 +1,5 @@
-//! Exact 32×32→64-bit products, the fixed kernel's only multiplication.
+//! Exact 32×32→64-bit products, the fixed kernel's only multiplication, and the count of
+//! leading zeros its normalizations need.
 //!
 //! Every product the kernel forms has two operands that fit 32 bits (their formats bound
 //! them, see [`super`]'s table), so it never needs a 64×64 product, let alone an overflow-
@@ -10,6 +11,54 @@
 //!
 //! Both forms are exact, so a frame is the same bits on every target
 //! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
+//!
+//! ARMv6-M has no `CLZ` either: `leading_zeros` is a call to `__clzsi2` (twice for a `u64`).
+//! [`leading_zeros`] is a five-step binary search inline there, `u64::leading_zeros`
+//! elsewhere; `tests::leading_zeros_match` checks the two agree.
+
+/// The number of leading zero bits of `x` (64 for 0).
+#[inline(always)]
+pub(crate) fn leading_zeros(x: u64) -> u32 {
+    #[cfg(shadeline_short_mul)]
+    {
+        search_leading_zeros(x)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        x.leading_zeros()
+    }
+}
+
+/// [`leading_zeros`] by binary search over the high or low word.
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+fn search_leading_zeros(x: u64) -> u32 {
+    let high = (x >> 32) as u32;
+    let (mut v, mut n) = if high != 0 { (high, 0) } else { (x as u32, 32) };
+    if v == 0 {
+        return 64;
+    }
+    if v >> 16 == 0 {
+        n += 16;
+        v <<= 16;
+    }
+    if v >> 24 == 0 {
+        n += 8;
+        v <<= 8;
+    }
+    if v >> 28 == 0 {
+        n += 4;
+        v <<= 4;
+    }
+    if v >> 30 == 0 {
+        n += 2;
+        v <<= 2;
+    }
+    if v >> 31 == 0 {
+        n += 1;
+    }
+    n
+}
 
 /// `a·b`, exact.
 #[inline(always)]
@@ -112,6 +161,19 @@ mod tests {
             (s >> 16) as u32
         });
         edges.into_iter().chain(random.take(3000))
+    }
+
+    #[test]
+    fn leading_zeros_match() {
+        for a in numbers() {
+            for b in numbers().step_by(97) {
+                let x = ((a as u64) << 32) | b as u64;
+                for v in [x, x >> (a % 64), b as u64, x << (b % 64)] {
+                    assert_eq!(search_leading_zeros(v), v.leading_zeros(), "{v:#x}");
+                }
+            }
+        }
+        assert_eq!(search_leading_zeros(0), 64);
     }
 
     #[test]

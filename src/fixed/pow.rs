@@ -70,7 +70,7 @@ const SIXTH_F31: u64 = 357_913_941;
 const TWENTYFOURTH_F31: u64 = 89_478_485;
 
 use super::exact::Exact;
-use super::mul::{mul_iu, mul_uu};
+use super::mul::{leading_zeros, mul_iu, mul_uu};
 
 /// The product of two values held in `u64` that both fit 32 bits (every operand in this
 /// module does: the formats above bound them), exact.
@@ -112,10 +112,10 @@ fn neg_log2_small(h: u64) -> (u32, i32) {
     p = ONE_F31 + (mul(h32, p) >> 32);
     let q = mul(p, INV_LN2_F31) >> 31; // < 1.48·2³¹
                                        // h ≈ top·2^(−29 − hz) with top its 32 leading bits.
-    let hz = h.leading_zeros();
+    let hz = leading_zeros(h);
     let top = (h << hz) >> 32;
     let g = mul(top, q); // value g·2^(−60 − hz)
-    let gz = g.leading_zeros();
+    let gz = leading_zeros(g);
     (((g << gz) >> 32) as u32, -28 - gz as i32 - hz as i32)
 }
 
@@ -123,7 +123,7 @@ fn neg_log2_small(h: u64) -> (u32, i32) {
 #[inline(always)]
 fn neg_log2_table(h: u64) -> (u32, i32) {
     let x = ONE_F61 - h; // > 0, ≤ 2⁶¹·(1 − 2⁻⁵)
-    let xz = x.leading_zeros(); // ≥ 3
+    let xz = leading_zeros(x); // ≥ 3
     let xn = x << xz; // m·2⁶³, m in [1, 2); x = m·2^(2 − xz)
     let m = xn >> 32; // U1F31
     let bin = ((xn >> 57) & 63) as usize;
@@ -140,7 +140,7 @@ fn neg_log2_table(h: u64) -> (u32, i32) {
     let log2_m = log2_m0 as i64 + 2 * log2_1p; // F32, in [0, 1)
     let g = (((xz as i64) - 2) << 32) - log2_m; // F32, > 0
     let g = g.max(1) as u64;
-    let gz = g.leading_zeros();
+    let gz = leading_zeros(g);
     (((g << gz) >> 32) as u32, -(gz as i32))
 }
 

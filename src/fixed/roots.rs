@@ -16,7 +16,7 @@
 //! reciprocal. Measured (tests below): relative error below `3·2⁻³¹` over the whole `u64`
 //! range for `inv_sqrt`, below `4·2⁻³¹` for `sqrt`.
 
-use super::mul::mul_uu;
+use super::mul::{leading_zeros, mul_uu};
 
 /// Entries of the table: one per top-8-bit pattern `64..=255` of a value in `[1, 4)` (U2F30).
 const BINS: usize = 192;
@@ -72,7 +72,7 @@ pub(crate) fn sqrt(x: u64) -> u64 {
 /// `[1, 4)`), and half of that shift.
 #[inline(always)]
 fn top_bits(x: u64) -> (u32, u32) {
-    let half_shift = x.leading_zeros() / 2;
+    let half_shift = leading_zeros(x) / 2;
     let normalized = x << (2 * half_shift);
     ((normalized >> 32) as u32, half_shift)
 }

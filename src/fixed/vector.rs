@@ -7,7 +7,7 @@
 //! wide products stay in `i64` and saturate, so no input can wrap, even outside the ranges
 //! the prepare step guarantees.
 
-use super::mul::{mul_ii, mul_iu, mul_uu};
+use super::mul::{leading_zeros, mul_ii, mul_iu, mul_uu};
 use fixed::types::{I16F16, I2F30};
 
 /// A length or coordinate in scaled scene units.
@@ -76,7 +76,7 @@ pub(crate) fn normalize(v: V3<i64>) -> Option<V3<Unit>> {
     if largest == 0 {
         return None;
     }
-    let bits = 64 - largest.leading_zeros();
+    let bits = 64 - leading_zeros(largest);
     let c = if bits > 30 {
         v.map(|c| c >> (bits - 30))
     } else {
