@@ -107,7 +107,7 @@
 //! 5. the two paths, each `prepare` → `spans` → `row` → `kernel`: [`float`] (scalar and
 //!    SIMD, one kernel over a lane type) and [`fixed`] (integers only);
 //! 6. sinks built on [`Render`]: `eg` (feature `embedded-graphics`);
-//! 7. built on everything: [`presets`] and the independent [`reference`].
+//! 7. built on everything: [`presets`] and the independent [`reference`](mod@reference).
 
 #![no_std]
 #![forbid(unsafe_code)]

@@ -46,7 +46,8 @@ pub(crate) struct Packet<L: Lane> {
     pub shadowed: [u32; 8],
 }
 
-/// What `hit` found, per lane: the nearest `t`, the sphere, and its material.
+/// What `hit` found, per lane: the nearest `t`, the sphere, and its classic material
+/// constants.
 struct Hit<T: Lane> {
     /// Distance along the ray; `f32::MAX` on a miss.
     t: T,
@@ -56,9 +57,13 @@ struct Hit<T: Lane> {
     offset: Vec3<T>,
     /// `1/r` of the sphere hit.
     inv_r: T,
-    /// The material constants of the sphere hit; [`NO_MATERIAL`] on a miss.
-    params: Params<T>,
-    /// Which optional parts of the models the packet shows.
+    /// `kd·albedo`, `ks`, exponent and Blinn flag of the sphere hit ([`NO_MATERIAL`]'s on a
+    /// miss).
+    kd_albedo: Vec3<T>,
+    ks: T,
+    shininess: T,
+    blinn: T,
+    /// Which optional parts of the models the packet shows (so far: `normalized`).
     present: Present,
     /// Bit `k`: some lane's nearest-so-far hit was sphere `k` (`k < 32`); a superset of the
     /// spheres the lanes finally hit.
@@ -116,12 +121,35 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             return packet;
         }
         let surface = self.normal(d, &hit, any_hit);
-        let (diffuse, specular) = if hit.present.normalized {
-            self.lights::<true>(&surface, &hit, record_hits, &mut packet.shadowed)
-        } else {
-            self.lights::<false>(&surface, &hit, record_hits, &mut packet.shadowed)
+        let mut params = Params {
+            kd_albedo: hit.kd_albedo,
+            ks: hit.ks,
+            shininess: hit.shininess,
+            blinn: hit.blinn,
+            ..Params::splat(&NO_MATERIAL)
         };
-        packet.color = combine(&hit.params, diffuse, specular, any_hit, background);
+        let mut present = hit.present;
+        if present.normalized {
+            self.normalized_constants(candidates, hit.id, &mut params, &mut present);
+        }
+        let (diffuse, specular) = if present.normalized {
+            self.lights::<true>(
+                &surface,
+                &params,
+                present,
+                record_hits,
+                &mut packet.shadowed,
+            )
+        } else {
+            self.lights::<false>(
+                &surface,
+                &params,
+                present,
+                record_hits,
+                &mut packet.shadowed,
+            )
+        };
+        packet.color = combine(&params, diffuse, specular, any_hit, background);
         packet
     }
 
@@ -142,12 +170,16 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     #[inline(always)]
     fn hit(&self, d: Vec3<W::Lane>, candidates: &[u16]) -> Hit<W::Lane> {
         let eps = W::Lane::splat(self.epsilon);
+        let zero = W::Lane::splat(0.0);
         let mut best = Hit {
             t: W::Lane::splat(f32::MAX),
             id: W::Lane::splat(-1.0),
             offset: Vec3::splat(Vec3::default()),
-            inv_r: W::Lane::splat(0.0),
-            params: Params::splat(&NO_MATERIAL),
+            inv_r: zero,
+            kd_albedo: Vec3::splat(Vec3::default()),
+            ks: zero,
+            shininess: W::Lane::splat(1.0),
+            blinn: zero,
             present: Present::default(),
             spheres: 0,
         };
@@ -167,34 +199,37 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             best.id = W::Lane::select(hit, W::Lane::splat(k as f32), best.id);
             best.offset = Vec3::select(hit, offset, best.offset);
             best.inv_r = W::Lane::select(hit, W::Lane::splat(s.inv_radius), best.inv_r);
-            let (m, p) = (&s.params, &mut best.params);
-            p.kd_albedo = Vec3::select(hit, Vec3::splat(m.kd_albedo), p.kd_albedo);
-            p.ks = W::Lane::select(hit, W::Lane::splat(m.ks), p.ks);
-            p.shininess = W::Lane::select(hit, W::Lane::splat(m.shininess), p.shininess);
-            p.blinn = W::Lane::select(hit, W::Lane::splat(m.blinn), p.blinn);
+            let m = &s.params;
+            best.kd_albedo = Vec3::select(hit, Vec3::splat(m.kd_albedo), best.kd_albedo);
+            best.ks = W::Lane::select(hit, W::Lane::splat(m.ks), best.ks);
+            best.shininess = W::Lane::select(hit, W::Lane::splat(m.shininess), best.shininess);
+            best.blinn = W::Lane::select(hit, W::Lane::splat(m.blinn), best.blinn);
             // Conservative: a nearer sphere may still take these lanes.
             best.present.normalized |= s.normalized;
-        }
-        if best.present.normalized {
-            self.normalized_constants(candidates, &mut best);
         }
         best
     }
 
-    /// Part of `hit`, only in packets that show a normalized model: the normalized models'
-    /// constants, lane by lane from the sphere each lane hit.
+    /// The rest of `hit`'s material, only in packets that show a normalized model: the
+    /// normalized models' constants, lane by lane from the sphere each lane hit (`id`).
     #[inline(always)]
-    fn normalized_constants(&self, candidates: &[u16], hit: &mut Hit<W::Lane>) {
+    fn normalized_constants(
+        &self,
+        candidates: &[u16],
+        id: W::Lane,
+        params: &mut Params<W::Lane>,
+        present: &mut Present,
+    ) {
         for &k in candidates {
             let Some(s) = self.spheres.get(k as usize) else {
                 continue;
             };
             let kf = W::Lane::splat(k as f32);
-            let here = W::Lane::and(hit.id.le(kf), kf.le(hit.id));
+            let here = W::Lane::and(id.le(kf), kf.le(id));
             if s.normalized && W::Lane::any(here) {
-                Params::select_normalized(here, &Params::splat(&s.params), &mut hit.params);
-                hit.present.schlick |= s.schlick;
-                hit.present.more_lobes |= s.more_lobes;
+                Params::select_normalized(here, &Params::splat(&s.params), params);
+                present.schlick |= s.schlick;
+                present.more_lobes |= s.more_lobes;
             }
         }
     }
@@ -230,16 +265,16 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     fn lights<const NORMALIZED: bool>(
         &self,
         surface: &Surface<W::Lane>,
-        hit: &Hit<W::Lane>,
+        params: &Params<W::Lane>,
+        present: Present,
         record_hits: bool,
         shadowed: &mut [u32; 8],
     ) -> (Vec3<W::Lane>, Vec3<W::Lane>) {
         let one = W::Lane::splat(1.0);
         let zero = W::Lane::splat(0.0);
-        let params = &hit.params;
         let present = Present {
             normalized: NORMALIZED,
-            ..hit.present
+            ..present
         };
         let masks = params.masks();
 
