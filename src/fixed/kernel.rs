@@ -1,22 +1,28 @@
-//! The per-pixel stages of the fixed path, in the float kernel's order and under its names:
+//! The per-pixel stages of the fixed path, in the float kernel's order and under its names
+//! (`src/float/kernel.rs`), one pixel per call:
 //!
 //! | stage | what it computes | formats |
 //! |---|---|---|
-//! | `ray` | the primary ray through the pixel centre, normalized | I16F48 → I2F30 |
+//! | `shade` | the whole pixel: the stages below, in this order | |
+//! | `ray` | the primary ray through the pixel centre, normalized (the row driver calls it) | I16F48 → I2F30 |
 //! | `hit` | the nearest sphere hit with `t > ε` among the pixel's candidate spheres | I16F16, I32F32 |
 //! | `normal` | `N = (P − C)·(1/r)`: no square root, `1/r` prepared | I16F16 → I2F30 |
-//! | `lights` | per light: direction `L` toward it, arriving colour `I`, shadow-ray length | I2F30, U16F16 |
-//! | `shadow` | a ray from `P + ε·N` toward the light, tested against every sphere | as `hit` |
-//! | `diffuse` | `Σ vis·I·max(0, N·L)` | U16F16 |
-//! | `specular` | `Σ vis·I·lobe`, lobe `= (1 − h)^n`, `h = ½|R − V|²` or `½|N − H|²` | U3F61 → U1F31 → U16F16 |
-//! | `encode` | `kd·albedo·diffuse + ks·specular`, saturating | U16F16 |
+//! | `lights` | the loop over every light, accumulating the diffuse and specular sums | |
+//! | `incoming` | per light: direction `L` toward it, arriving colour `I`, shadow-ray length | I2F30, U16F16 |
+//! | `shadow` | per light: a ray from `P + ε·N` toward the light, tested against the sphere itself and its prepared casters | as `hit` |
+//! | `diffuse` | per light: `Σ vis·I·max(0, N·L)` | U16F16 |
+//! | `specular` | per light: `Σ vis·I·lobe`, lobe `= (1 − h)^n`, `h = ½|R − V|²` or `½|N − H|²` | U3F61 → U1F31 → U16F16 |
+//! | `combine` | `kd·albedo·diffuse + ks·specular`, saturating | U16F16 |
 //!
-//! (The spans stage is the row driver's, in [`super::spans`] and [`super::row`].)
+//! (The spans stage is the row driver's, in [`super::spans`] and [`super::row`]; quantizing
+//! to a pixel format is the row driver's `encode` step.) The normalized models' `diffuse`
+//! and `specular` are one function, `normalized`, since both need `N·L` and Fresnel's `F`.
 //!
-//! Every product of two 32-bit quantities is widened (`wide_mul`, or `i64`/`u64`), every sum
-//! that could leave its format saturates, and no division or square root can see a zero or
-//! negative input: `1/√x` and `√x` come from [`super::roots`], which return `None` or 0 for
-//! zero and take unsigned input. Nothing here can panic, in release or debug.
+//! Every product is an exact 32×32→64-bit product from [`super::mul`] (the formats bound
+//! every operand to 32 bits), every sum that could leave its format saturates, and no
+//! division or square root can see a zero or negative input: `1/√x` and `√x` come from
+//! [`super::roots`], which return `None` or 0 for zero and take unsigned input. Nothing here
+//! can panic, in release or debug.
 
 use super::exact::shift_saturating;
 use super::mul::{mul_ii, mul_iu, mul_uu};

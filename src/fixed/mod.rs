@@ -4,8 +4,8 @@
 //! [`PreparedFixed::new`] converts the scene once per frame (the only floating point of the
 //! path, see `prepare`); [`Render::render_line`](crate::Render::render_line) then shades rows
 //! with integer arithmetic only, through the same stages as the float kernel, under the same
-//! names, in the same order (`spans`, then the kernel's `ray`, `hit`, `normal`, `lights`,
-//! `shadow`, `diffuse`, `specular`, `encode`). Its contract is agreement with the `f64`
+//! names, in the same order (`spans`, then the kernel's `ray`, `hit`, `normal`, `lights` with
+//! `incoming`, `shadow`, `diffuse`, `specular` per light, and `combine`; then `encode`). Its contract is agreement with the `f64`
 //! [`reference`](crate::reference) within a stated budget (`tests/fixed_agreement.rs`: at
 //! most 2 levels per 8-bit channel, ≥ 99% within 1 level, ≤ 0.1% of ray decisions differ;
 //! measured on the exponent series and 64 random scenes: at most 1 level, no decision
@@ -56,15 +56,15 @@
 //! | `kd·albedo` (classic) or `kd·albedo/π` (normalized, Lambert; 0 for metals) | `kd_albedo`, U16F16 |
 //! | `ks` (classic) or 1 (normalized: the weights carry it) | `ks`, U16F16 |
 //! | lobe cosine `R·V` or `N·H` | `h = 1 − cos = ½|R − V|²` or `½|N − H|²`, U3F61, the same for every lobe |
-//! | `max(0, c)^nₖ` for each lobe | the existing `pow::lobe(h, nₖ)`, U1F31, per lobe |
+//! | `max(0, c)^nₖ` for each lobe | `pow::lobe(h, nₖ)`, U1F31, per lobe (the classic models' lobe) |
 //! | `wₖ·cₖ` (weight times normalization) | `f32` held exactly (mantissa, exponent): no range limit, the product with the lobe is shifted into U16F16 and saturates |
 //! | `max(0, N·L)` | U2F30 |
 //! | Schlick `(1 − L·H)⁵`, `F = F₀ + (1 − F₀)·w` per channel | U2F30, four multiplications; `F₀` U2F30 |
 //! | diffuse `I·max(0, N·L)·(1 − F)`, specular `I·max(0, N·L)·F·Σ wₖcₖ·lobeₖ` | U16F16, saturating (`normalized` in `kernel`) |
 //!
-//! The classic models keep their own code (`diffuse`, `specular`), unchanged, so their
-//! frames and golden CRCs are the same bits as before the normalized models existed. The
-//! models' budget against the reference is tested in `tests/models_agree.rs`.
+//! The classic models have their own `diffuse` and `specular`, which do none of the
+//! normalized models' work (`N·L` scaling, Fresnel, more lobes). The models' budget against
+//! the reference is tested in `tests/models_agree.rs`.
 //!
 //! # Refused scenes
 //!
@@ -76,17 +76,21 @@
 //!
 //! # Costs
 //!
-//! Per tested sphere nine 32×32→64-bit multiplications and, on a hit, a square root (six
-//! more, see `roots`); per lit pixel and light, a normalization (point lights), a shadow test
-//! per sphere, and about twelve multiplications for the lobe. No division anywhere per pixel:
-//! on a Cortex-M0 a 64-bit product is a call to `__aeabi_lmul`, a division one to
-//! `__aeabi_uldivmod`, several times dearer.
+//! Per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
+//! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against
+//! the sphere itself (three products when the ray leaves its lit side) and each sphere the
+//! prepare found can cast a shadow on it ([`Scene::shadow_casters`](crate::Scene)), and
+//! about twelve products for the lobe. No division anywhere per pixel. On ARMv6-M (Cortex-M0,
+//! RP2040), whose multiplier is 32×32→32 and which has no `CLZ`, `mul` builds each product
+//! from four 16×16 `MULS` inline and counts leading zeros by a binary search, instead of
+//! calls to `__aeabi_lmul` and `__clzsi2`.
 //!
 //! # Modules
 //!
 //! `prepare` (scene → formats, the refusals) · `spans` (screen rectangles) · `row` (the
 //! row driver) · `kernel` (the stages) · `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
-//! `vector` (dot products and normalization) · `exact` (`f32` as mantissa and exponent).
+//! `vector` (dot products and normalization) · `mul` (exact 32×32→64 products, leading
+//! zeros) · `exact` (`f32` as mantissa and exponent).
 
 mod exact;
 mod kernel;

@@ -83,6 +83,8 @@ struct Surface<T: Lane> {
     shadow_origin: Vec3<T>,
     /// Lanes that hit a sphere.
     any_hit: T::Mask,
+    /// The spheres some lane hit (`Hit::spheres`).
+    hit_spheres: u32,
 }
 
 /// One light as seen from a packet's surface points.
@@ -254,6 +256,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             view: -d,
             shadow_origin: p + n * W::Lane::splat(self.epsilon),
             any_hit,
+            hit_spheres: hit.spheres,
         }
     }
 
@@ -282,7 +285,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let mut specular_sum = Vec3::splat(Vec3::default());
         for (light_index, light) in self.lights.iter().enumerate() {
             let light = incoming(light, surface.p);
-            let blocked = self.shadow(surface, &light, self.casters_of(hit.spheres, light_index));
+            let blocked = self.shadow(
+                surface,
+                &light,
+                self.casters_of(surface.hit_spheres, light_index),
+            );
             if record_hits && light_index < 32 {
                 let bits = W::Lane::bitmask(W::Lane::and(surface.any_hit, blocked));
                 for (lane, word) in shadowed.iter_mut().enumerate() {
