@@ -56,14 +56,15 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         encoding: Encoding,
     ) -> Result<(), RenderError> {
         check_segment(y, x, out.len(), self.width, self.height)?;
-        let lanes = W::Lane::LANES;
         let row = self.row(y);
         let spans = self.row_spans(y);
         let runs = merge_runs::<S>(&spans);
         let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
-            for (chunk_index, chunk) in run_pixels.chunks_mut(lanes).enumerate() {
-                let x0 = (start + chunk_index * lanes) as u32;
+            // The lane count as a constant inside the closure, so that `chunks_mut`'s check
+            // for a zero size folds away even where the closure is not inlined.
+            for (chunk_index, chunk) in run_pixels.chunks_mut(W::Lane::LANES).enumerate() {
+                let x0 = (start + chunk_index * W::Lane::LANES) as u32;
                 let x1 = x0 + chunk.len() as u32;
                 let mut candidates: heapless::Vec<u16, S> = heapless::Vec::new();
                 for (k, span) in spans.iter().enumerate() {
