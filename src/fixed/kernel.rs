@@ -224,7 +224,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The spheres that can block light `light` from reaching sphere `index` (bit `k` for
     /// sphere `k`; spheres from index 32 on are always tested), prepared per frame.
     #[inline(always)]
-    fn casters(&self, index: usize, light: usize) -> u32 {
+    pub(crate) fn casters(&self, index: usize, light: usize) -> u32 {
         self.casters
             .get(index)
             .and_then(|c| c.get(light))

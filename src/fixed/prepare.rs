@@ -12,6 +12,8 @@
 //! rectangle ([`super::spans`]).
 
 use super::exact::Exact;
+use super::mul::mul_ii;
+use super::narrow::{NarrowSphere, NarrowView, DELTA};
 use super::roots::inv_sqrt;
 use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
@@ -64,6 +66,8 @@ pub(crate) struct FixedSphere {
     pub diffuse_loss: bool,
     /// The screen rectangle, or `None` if the sphere is off screen.
     pub bounds: Option<Bounds>,
+    /// The narrow kernel's constants, if the frame uses it.
+    pub narrow: Option<NarrowSphere>,
 }
 
 /// A light's per-frame constants.
@@ -106,6 +110,8 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     /// Per sphere and light, the other spheres that can shadow it
     /// ([`Scene::shadow_casters`]).
     pub(crate) casters: heapless::Vec<[u32; L], S>,
+    /// The primary directions in the narrow kernel's form, if the frame uses it.
+    pub(crate) narrow: Option<NarrowView>,
     pub(crate) use_spans: bool,
 }
 
@@ -237,6 +243,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 schlick: params.schlick > 0.0,
                 diffuse_loss: params.diffuse_loss > 0.0,
                 bounds: view.bounds(s.center, s.radius),
+                narrow: None,
             };
             // Same capacity as the scene: cannot fail.
             let _ = spheres.push(sphere);
@@ -301,7 +308,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
 
         let bg = scene.background();
-        Ok(PreparedFixed {
+        let mut frame = PreparedFixed {
             width,
             height,
             eye,
@@ -317,8 +324,117 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             spheres,
             lights,
             casters,
+            narrow: None,
             use_spans: true,
+        };
+        frame.prepare_narrow(scene);
+        Ok(frame)
+    }
+
+    /// Whether every sphere is more than `4ε` from the surface of each sphere that can shadow
+    /// it (the narrow kernel's caster test assumes its shadow rays start outside them).
+    fn casters_apart(&self) -> bool {
+        let eps = self.epsilon.to_bits() as i64;
+        let radius = |s: &FixedSphere| (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
+        self.spheres.iter().zip(&self.casters).all(|(s, masks)| {
+            let mask = masks.iter().fold(0, |a, m| a | m);
+            self.spheres.iter().enumerate().all(|(k, c)| {
+                if k >= 32 || mask & (1 << k) == 0 {
+                    return k < 32 || core::ptr::eq(s, c);
+                }
+                let d = each3(|i| s.center[i].to_bits() as i64 - c.center[i].to_bits() as i64);
+                let apart = radius(s) + radius(c) + 4 * eps;
+                d.iter().map(|&v| v * v).sum::<i64>() > apart * apart
+            })
         })
+    }
+
+    /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions.
+    fn prepare_narrow(&mut self, scene: &Scene<S, L>) {
+        let all_distant = self
+            .lights
+            .iter()
+            .all(|l| matches!(l, FixedLight::Distant { .. }));
+        let classic = self.spheres.iter().all(|s| !s.normalized);
+        if !(all_distant && classic && self.casters_apart()) {
+            return;
+        }
+        // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
+        let narrow = |v: V3<I16F48>| v.map(|c| ((c.to_bits() + (1 << 18)) >> 19) as i32);
+        let view = NarrowView {
+            forward: narrow(self.forward),
+            step_x: narrow(self.step_x),
+            step_y: narrow(self.step_y),
+        };
+        // Every direction within √2 of the central one in length (the corners are the
+        // longest): then |D| < 2³⁰ and every narrow format holds.
+        let (w, h) = (self.width as i64 - 1, self.height as i64 - 1);
+        let len2 = |d: [i64; 3]| d.iter().map(|&c| (c >> 8) * (c >> 8)).sum::<i64>();
+        let centre = len2(view.forward.map(|c| c as i64));
+        for (dx, dy) in [(-w, -h), (-w, h), (w, -h), (w, h)] {
+            let d = each3(|i| {
+                view.forward[i] as i64 + dy * view.step_y[i] as i64 + dx * view.step_x[i] as i64
+            });
+            if len2(d) > 2 * centre {
+                return;
+            }
+        }
+        let eps = self.epsilon.to_bits() as i64;
+        let step2 = view.step_x.map(|c| 2 * c);
+        let intensity: f32 = self
+            .lights
+            .iter()
+            .map(|l| match l {
+                FixedLight::Distant { arriving, .. } => arriving
+                    .iter()
+                    .map(|c| c.to_num::<f32>())
+                    .fold(0.0, f32::max),
+                FixedLight::Point { .. } => 0.0,
+            })
+            .sum();
+        // A sphere's constants are only read once the frame's view is set, at the end.
+        for (s, m) in self.spheres.iter_mut().zip(scene.spheres()) {
+            let oc = s.eye_offset.map(|c| c.to_bits());
+            let r = (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
+            let outside = oc.iter().map(|&c| c as i64 * c as i64).sum::<i64>();
+            if outside <= (r + 2 * eps) * (r + 2 * eps) {
+                return;
+            }
+            let bits = 64 - r.leading_zeros();
+            let shift = bits + 14;
+            let left = 32u32.saturating_sub(shift);
+            let cross = [
+                mul_ii(oc[1], step2[2]) - mul_ii(oc[2], step2[1]),
+                mul_ii(oc[2], step2[0]) - mul_ii(oc[0], step2[2]),
+                mul_ii(oc[0], step2[1]) - mul_ii(oc[1], step2[0]),
+            ];
+            let (rf, ef) = (r as f32, eps as f32);
+            let ks_intensity = s.ks.to_num::<f32>() * intensity;
+            let n = m.material.shininess;
+            // Below τ (half a U16F16 step) the lobe is invisible.
+            let tau = 1.0 / 131_072.0;
+            let cutoff = if ks_intensity <= tau {
+                0
+            } else {
+                let h = 1.0 - libm::powf(tau / ks_intensity, 1.0 / n);
+                let h = (h + 2.5 * DELTA).min(3.99);
+                (h * (1u64 << 61) as f32) as u64
+            };
+            let lobe_error = ks_intensity * 255.0 * libm::sqrtf(n) * DELTA * 0.61;
+            s.narrow = Some(NarrowSphere {
+                left,
+                right: shift + left - 32,
+                radius: r as u32,
+                gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
+                dw: cross.map(|c| c << left),
+                db: mul_ii(oc[0], step2[0]) + mul_ii(oc[1], step2[1]) + mul_ii(oc[2], step2[2]),
+                shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
+                    as u32,
+                cutoff,
+                lobe_everywhere: lobe_error <= 0.5,
+            });
+        }
+        self.narrow = Some(view);
     }
 
     /// Turns the screen-rectangle spans on (the default) or off. Off, every pixel tests every

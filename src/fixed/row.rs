@@ -9,6 +9,7 @@
 //! iterators, and every index is checked, so nothing here can panic.
 
 use super::kernel::ray;
+use super::narrow::Narrow;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, Encoding};
@@ -82,6 +83,23 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         });
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
+            if let Some(mut narrow) = self.narrow_run(start as u32, y, &spans) {
+                // The narrow kernel, and the full-width one (with its direction computed for
+                // the pixel alone) where the narrow one hands over.
+                for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
+                    let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS) {
+                        Narrow::Done(shaded) => shaded,
+                        Narrow::Precise => ray(self.direction(column, y))
+                            .and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS)),
+                    };
+                    self.narrow_advance(&mut narrow);
+                    *px = match shaded {
+                        Some(s) => encode(s.color, s.hit, encoding, column, y),
+                        None => background.at(column as usize),
+                    };
+                }
+                return;
+            }
             let mut dir = self.direction(start as u32, y);
             for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                 let shaded = ray(dir).and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS));

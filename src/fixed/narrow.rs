@@ -1,0 +1,739 @@
+//! The narrow kernel: the fixed path's pixels in 16×16→32-bit products, for the frames that
+//! allow it, with the full-width kernel ([`super::kernel`]) as its fallback per pixel.
+//!
+//! # Why it exists
+//!
+//! The full-width kernel holds unit vectors in I2F30 and lengths in I16F16, so nearly every
+//! product is 32×32→64 bits: one instruction on a Cortex-M4 or an RV32IM core, but about
+//! twenty on ARMv6-M (Cortex-M0/M0+, RP2040), whose multiplier is 32×32→32. A lit pixel makes
+//! about 85 of them. Most of that precision only matters next to a narrow highlight; the
+//! diffuse term, the silhouettes and the wide lobes need about 15 bits. This kernel computes
+//! those in 15-bit fractions (Q15), where a product is one `MULS`, and hands a pixel to the
+//! full-width kernel only where its error bound says the lobe needs more.
+//!
+//! # When it applies
+//!
+//! A frame uses it ([`NarrowView`], made by the prepare) when every light is distant, every
+//! sphere uses a classic model (Phong or Blinn-Phong, not normalized), every sphere is more
+//! than `4ε` from each sphere that can shadow it ([`crate::Scene::shadow_casters`]), the
+//! camera is outside every sphere, and the image plane is narrow enough that every primary direction is within
+//! `√2` of the central one in length (a field of view up to about 90° on the diagonal).
+//! Every other frame renders with the full-width kernel alone. The conditions are
+//! frame-wide, so a pixel's result does not depend on which spheres' spans cover it (turning
+//! spans off changes no pixel).
+//!
+//! # How a pixel is computed
+//!
+//! With `D` the unnormalized primary direction, `oc = eye − centre` and `r` the radius:
+//!
+//! - `w = oc × D` and `b = oc·D` are linear along a row, so they advance by one exact
+//!   64-bit addition per pixel (`D` is an integer vector that advances by an integer step,
+//!   so no rounding accumulates: a pixel's values do not depend on where its run or
+//!   segment starts);
+//! - `σ = |D₀|/|D|` (from `1/√|D|²`, see [`rsqrt`]) scales everything to unit length:
+//!   `D̂ = D·σ/|D₀|` and `u = w·σ/(r·|D₀|) = (oc × D̂)/r`, both Q15;
+//! - the ray hits the sphere iff `b < 0` (it is in front) and `|u| ≤ 1`. Then
+//!   `N·V = √(1 − |u|²)`, and the normal is `N = D̂ × u − (N·V)·D̂`: the closest-approach
+//!   vector from the cross product, with no subtraction of two large vectors, so it keeps
+//!   15 bits however far the sphere is from the camera;
+//! - per light: `N·L` (diffuse, and the sphere's own shadow: a ray lifted by ε off the
+//!   surface meets the sphere again iff `N·L < 0` and `(N·L)² > 1 − r²/(r + ε)²`), and the
+//!   lobe's `h = 1 − cos = ½|R − V|²` (Phong) or `½|N − H|²` (Blinn-Phong) from Q15
+//!   components, which keeps relative precision at the highlight;
+//! - the lobe itself is [`super::pow::lobe`] of that `h`, and `combine` is the full-width
+//!   kernel's.
+//!
+//! # Where it hands over
+//!
+//! The components of `R − V` (and `N`) are within `δ = 2⁻¹⁰` of their exact values wherever
+//! `N·V ≥ 0.3` (test `narrow_vectors_within_delta` measures the largest error on the exponent
+//! series: 26 steps of `2⁻¹⁵` for `R − V`, 14 for `N`; toward the silhouette it grows as
+//! `1/(N·V)`, as the geometry's own sensitivity does). So `h` is within about `|R − V|·δ`,
+//! and the lobe `(1 − h)ⁿ` within about `√n·δ·0.61` (the maximum of `n·√(2h)·δ·e^(−nh)`,
+//! at `h = 1/2n`). The prepare turns that into two per-sphere numbers:
+//!
+//! - `cutoff`: above this `h` the lobe, times `ks` and the sum of the lights' intensities,
+//!   is below `2⁻¹⁷` (half a U16F16 step), even allowing for the error of `h`: the lobe is 0;
+//! - `lobe_everywhere`: whether `ks·ΣI·√n·δ·0.61` is at most half an 8-bit level, so the
+//!   narrow lobe can be used wherever it is not 0.
+//!
+//! A pixel below the cutoff of a sphere without `lobe_everywhere` (the bright part of a
+//! narrow highlight) is shaded by the full-width kernel, and so is one where both `N·V` and
+//! `|N·L|` are below 0.3 (near the silhouette, where `N`'s error grows, and dark, where an
+//! sRGB level is smallest). On the exponent series at 320×240 that is 537 of 11,839 covered
+//! pixels (4.5%; test `exponent_series_hands_few_pixels_over`).
+//!
+//! Every step is integer arithmetic with the same bits on every target; products are
+//! 16×16→32 bits (`|x| ≤ 2¹⁵` operands) except in [`rsqrt`], the square root `N·V`, and the
+//! per-channel scaling by the light's colour.
+
+use super::kernel::Shaded;
+use super::mul::{mul_ii, mul_uu};
+use super::pow::lobe;
+use super::prepare::{FixedLight, PreparedFixed};
+use super::vector::{dot_len_unit, each3, length_sq, to_len, Unit, V3};
+use crate::pixel::HitRecord;
+use crate::runs::Span;
+
+/// One, Q15.
+const ONE: i32 = 1 << 15;
+/// The largest error of a component of `R − V` (or `N − H`) where `N·V ≥ 0.3`: `2⁻¹⁰`.
+/// Checked by `tests::narrow_vectors_within_delta` (the largest seen is 26 steps of `2⁻¹⁵`).
+pub(crate) const DELTA: f32 = 1.0 / 1024.0;
+
+/// `N·V` and `|N·L|` below this (0.3, Q15) together hand a pixel over.
+const GRAZING: i32 = 9830;
+
+/// The primary directions of a frame in narrow form: `D = forward + dy·step_y + dx·step_x`
+/// with `dx = 2x + 1 − w` and `dy = h − 2y − 1`, integer vectors with `|D| < 2³⁰`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NarrowView {
+    pub forward: V3<i32>,
+    pub step_x: V3<i32>,
+    pub step_y: V3<i32>,
+}
+
+/// A sphere's narrow constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NarrowSphere {
+    /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
+    pub left: u32,
+    /// The high word of the held `w`, shifted right by this, is `w16` (`|w16| < 2¹⁶` on a hit).
+    pub right: u32,
+    /// The radius, raw I16F16.
+    pub radius: u32,
+    /// `2^(L + 15)/r` with `L` the bit length of the raw radius: in `(2¹⁵, 2¹⁶]`.
+    pub gain: u32,
+    /// `w` and `b` per pixel step (`oc × 2·step_x`, held shifted like `w`; `oc·2·step_x`).
+    pub dw: V3<i64>,
+    pub db: i64,
+    /// `1 − r²/(r + ε)²` in Q30: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
+    pub shadow_limit: u32,
+    /// `h` (U3F61) from which the lobe is 0.
+    pub cutoff: u64,
+    /// Whether the narrow lobe is within a quarter level wherever it is not 0.
+    pub lobe_everywhere: bool,
+}
+
+/// What the narrow kernel made of a pixel.
+pub(crate) enum Narrow {
+    /// The pixel: `None` for the background.
+    Done(Option<Shaded>),
+    /// The full-width kernel must shade this pixel.
+    Precise,
+}
+
+/// One sphere along a run: its values at column `max(x, span.start)` of the run's current
+/// column `x`, and what the hot loop needs of its constants.
+#[derive(Clone, Copy)]
+struct Track {
+    index: usize,
+    span: Span,
+    /// `oc × D`, held shifted left by the sphere's `left`.
+    w: V3<i64>,
+    /// `oc·D`.
+    b: i64,
+    dw: V3<i64>,
+    db: i64,
+    right: u32,
+    gain: u32,
+}
+
+/// The state of the narrow kernel along one run of a row.
+pub(crate) struct NarrowRun<const S: usize> {
+    /// The current column and its direction.
+    x: u32,
+    d: V3<i32>,
+    step: V3<i32>,
+    tracks: heapless::Vec<Track, S>,
+}
+
+/// A hit: the sphere, `u`, `N·V`, `b`, and `t` in raw I16F16 once two hits are compared.
+struct Hit {
+    index: usize,
+    u: V3<i32>,
+    nv: i32,
+    b: i64,
+    t: Option<i64>,
+}
+
+/// The surface under a pixel: the sphere, the unit ray direction and the normal (Q15).
+#[derive(Clone, Copy)]
+struct Surface {
+    index: usize,
+    dh: V3<i32>,
+    n: V3<i32>,
+    /// `N·V`, Q15.
+    nv: i32,
+}
+
+/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern `64..=255` of a value in `[¼, 1)`.
+const BINS: usize = 192;
+
+/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`).
+static RSQRT_TABLE: [u16; BINS] = rsqrt_table();
+
+const fn rsqrt_table() -> [u16; BINS] {
+    let mut table = [0u16; BINS];
+    let mut i = 0;
+    while i < BINS {
+        // Bin `64 + i` covers m in [(64 + i)/256, (65 + i)/256); its centre is
+        // (2i + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2i + 129)).
+        table[i] = ((1u64 << 39) / (2 * i as u64 + 129)).isqrt() as u16;
+        i += 1;
+    }
+    table
+}
+
+/// `1/√x` for `x > 0` as `(y, e)`: `1/√x ≈ y·2^-e`, `y` in about `[2¹⁵, 2¹⁶]`, within
+/// `1.5·2⁻¹⁵` relative: a table lookup and one Newton step `y·(3 − m·y²)/2`.
+#[inline(always)]
+pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
+    let k = even_leading_zeros(x);
+    (rsqrt_normalized(x << k), 31 - k / 2)
+}
+
+/// `2³¹/√m` for `m` in `[2³⁰, 2³²)`, within `1.5·2⁻¹⁵` relative (in about `[2¹⁵, 2¹⁶]`).
+#[inline(always)]
+fn rsqrt_normalized(m: u32) -> u32 {
+    let y0 = RSQRT_TABLE
+        .get(((m >> 24) as usize).saturating_sub(64))
+        .copied()
+        .unwrap_or(1 << 15) as u32;
+    // m·y0² as Q30 from their top 16 bits (y0² Q30 → Q14, m Q32 → Q16): about 2³⁰.
+    let p = ((y0 * y0 + (1 << 15)) >> 16) * (m.saturating_add(1 << 15) >> 16);
+    let corr = (3u32 << 30).saturating_sub(p);
+    // y0·corr/2³¹, rounded at both steps (y0 < 2¹⁶, corr < 3·2³⁰: no overflow).
+    (y0 * ((corr + (1 << 15)) >> 16) + (1 << 14)) >> 15
+}
+
+/// `√x` of a Q30 value in `[0, 2³⁰]`, as Q15.
+#[inline(always)]
+fn sqrt_q30(x: u32) -> i32 {
+    if x == 0 {
+        return 0;
+    }
+    let k = even_leading_zeros(x);
+    let y = rsqrt_normalized(x << k);
+    // √x = (x·2^k)·y·2^(−31)·2^(−k/2)
+    let scaled = (((x << k).saturating_add(1 << 15) >> 16) * y) >> 14; // < 2¹⁹
+    ((scaled + (1 << (k / 2))) >> (1 + k / 2)) as i32
+}
+
+/// The number of leading zeros of `x > 0`, rounded down to even: the shift that brings `x`
+/// into `[2³⁰, 2³²)` by a power of four. `CLZ` where the core has it; on ARMv6-M, which
+/// has not, four steps of a binary search inline.
+#[inline(always)]
+fn even_leading_zeros(x: u32) -> u32 {
+    #[cfg(shadeline_short_mul)]
+    {
+        let (mut n, mut v) = (0, x);
+        if v >> 16 == 0 {
+            n += 16;
+            v <<= 16;
+        }
+        if v >> 24 == 0 {
+            n += 8;
+            v <<= 8;
+        }
+        if v >> 28 == 0 {
+            n += 4;
+            v <<= 4;
+        }
+        if v >> 30 == 0 {
+            n += 2;
+        }
+        n
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        x.leading_zeros().min(30) & !1
+    }
+}
+
+/// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products.
+#[inline(always)]
+fn scale_q16(a: u32, b: u32) -> u32 {
+    let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
+    let low = ((a & 0xffff) * b) >> 16;
+    high.saturating_add(low)
+}
+
+/// `k·v/2¹⁶`, rounded down, saturating: [`scale_q16`] when `k ≤ 1` (U16F16), which
+/// `kd·albedo` and `ks` nearly always are, a full product otherwise.
+#[inline(always)]
+fn mul_u16f16(k: u32, v: u32) -> u32 {
+    if k <= 1 << 16 {
+        scale_q16(v, k)
+    } else {
+        u32::try_from(mul_uu(k, v) >> 16).unwrap_or(u32::MAX)
+    }
+}
+
+/// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products.
+#[inline(always)]
+fn scale_q15(a: u32, b: i32) -> u32 {
+    let b = b.clamp(0, ONE) as u32;
+    let high = (a >> 16) * b; // < 2³¹
+    let low = ((a & 0xffff) * b) >> 15;
+    high.checked_mul(2)
+        .and_then(|h| h.checked_add(low))
+        .unwrap_or(u32::MAX)
+}
+
+#[inline(always)]
+fn dot(a: V3<i32>, b: V3<i32>) -> i32 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// The narrow direction of pixel `x` on row `y`.
+    #[inline(always)]
+    fn narrow_direction(view: &NarrowView, x: u32, y: u32, width: u32, height: u32) -> V3<i32> {
+        let dy = height as i32 - 2 * y as i32 - 1;
+        let dx = 2 * x as i32 + 1 - width as i32;
+        each3(|i| view.forward[i] + dy * view.step_y[i] + dx * view.step_x[i])
+    }
+
+    /// The narrow state at the first pixel `x` of a run on row `y`, or `None` if the frame
+    /// does not use the narrow kernel.
+    pub(crate) fn narrow_run(
+        &self,
+        x: u32,
+        y: u32,
+        spans: &[Option<Span>],
+    ) -> Option<NarrowRun<S>> {
+        let view = self.narrow.as_ref()?;
+        let mut tracks = heapless::Vec::new();
+        for (index, (s, span)) in self.spheres.iter().zip(spans).enumerate() {
+            let (Some(span), Some(n)) = (span, s.narrow.as_ref()) else {
+                continue;
+            };
+            if span.end <= x {
+                continue;
+            }
+            let d = Self::narrow_direction(view, x.max(span.start), y, self.width, self.height);
+            let oc = s.eye_offset.map(|c| c.to_bits());
+            let cross = [
+                mul_ii(oc[1], d[2]) - mul_ii(oc[2], d[1]),
+                mul_ii(oc[2], d[0]) - mul_ii(oc[0], d[2]),
+                mul_ii(oc[0], d[1]) - mul_ii(oc[1], d[0]),
+            ];
+            let track = Track {
+                index,
+                span: *span,
+                w: cross.map(|c| c << n.left),
+                b: mul_ii(oc[0], d[0]) + mul_ii(oc[1], d[1]) + mul_ii(oc[2], d[2]),
+                dw: n.dw,
+                db: n.db,
+                right: n.right,
+                gain: n.gain,
+            };
+            // As many tracks as spheres: cannot fail.
+            let pushed = tracks.push(track);
+            debug_assert!(pushed.is_ok());
+        }
+        Some(NarrowRun {
+            x,
+            d: Self::narrow_direction(view, x, y, self.width, self.height),
+            step: view.step_x.map(|c| 2 * c),
+            tracks,
+        })
+    }
+
+    /// Moves `run` one pixel to the right: the direction, and each sphere whose span has
+    /// begun.
+    #[inline(always)]
+    pub(crate) fn narrow_advance(&self, run: &mut NarrowRun<S>) {
+        for (c, s) in run.d.iter_mut().zip(run.step) {
+            *c += s;
+        }
+        // By index: an iterator's trip count would be a division by the size of a track,
+        // which ARMv6-M makes a call.
+        for i in 0..run.tracks.len() {
+            if let Some(t) = run.tracks.get_mut(i) {
+                if t.span.start <= run.x && run.x < t.span.end {
+                    t.w[0] += t.dw[0];
+                    t.w[1] += t.dw[1];
+                    t.w[2] += t.dw[2];
+                    t.b += t.db;
+                }
+            }
+        }
+        run.x += 1;
+    }
+
+    /// Shades pixel `x` of `run` with the narrow kernel, or says it needs the full-width one.
+    #[inline(always)]
+    pub(crate) fn narrow_shade(&self, run: &NarrowRun<S>, record_hits: bool) -> Narrow {
+        let Some(surface) = self.narrow_surface(run) else {
+            return Narrow::Done(None);
+        };
+        self.narrow_lights(&surface, record_hits)
+    }
+
+    /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
+    /// `D̂` and `N` in Q15; `None` for the background.
+    #[inline(always)]
+    fn narrow_surface(&self, run: &NarrowRun<S>) -> Option<Surface> {
+        let x = run.x;
+        let d16 = run.d.map(|c| c >> 15);
+        // |D16| < 2¹⁵·√2·…: a < 2³¹.
+        let a = dot(d16, d16) as u32;
+        // σ = 2²⁹/√a, Q15 (|D₀| is 2¹⁴ in D16 units); a is in [2²⁶, 2³⁰], so 1/√a is
+        // 2³¹/√(a·4^k)·2^(k − 16) with k = 0, 1 or 2.
+        let sigma = if a >= 1 << 30 {
+            rsqrt_normalized(a) >> 2
+        } else if a >= 1 << 28 {
+            rsqrt_normalized(a << 2) >> 1
+        } else {
+            rsqrt_normalized(a << 4)
+        };
+        let sigma = sigma.min(ONE as u32) as i32;
+
+        let mut best: Option<Hit> = None;
+        for i in 0..run.tracks.len() {
+            let Some(t) = run.tracks.get(i) else {
+                continue;
+            };
+            if !(t.span.start <= x && x < t.span.end) || t.b >= 0 {
+                continue;
+            }
+            let high = t.w.map(|c| (c >> 32) as i32 >> t.right);
+            if (high[0].unsigned_abs() | high[1].unsigned_abs() | high[2].unsigned_abs()) >= 1 << 16
+            {
+                continue;
+            }
+            let mu = ((sigma as u32 * t.gain) >> 16) as i32; // ≤ 2¹⁵
+            let u = high.map(|c| (c * mu) >> 14);
+            if (u[0].unsigned_abs() | u[1].unsigned_abs() | u[2].unsigned_abs()) > ONE as u32 {
+                continue;
+            }
+            let uu = (u[0] * u[0]) as u32 + (u[1] * u[1]) as u32 + (u[2] * u[2]) as u32;
+            if uu > 1 << 30 {
+                continue;
+            }
+            let nv = sqrt_q30((1 << 30) - uu);
+            let mut hit = Hit {
+                index: t.index,
+                u,
+                nv,
+                b: t.b,
+                t: None,
+            };
+            best = match best {
+                None => Some(hit),
+                Some(mut prev) => {
+                    // Two hits on one pixel: the nearer wins (the first on a tie).
+                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma));
+                    prev.t = Some(t_prev);
+                    let t_new = self.narrow_t(&hit, sigma);
+                    hit.t = Some(t_new);
+                    Some(if t_new < t_prev { hit } else { prev })
+                }
+            };
+        }
+        let hit = best?;
+        // D̂ (Q15) and N = D̂ × u − (N·V)·D̂.
+        let dh = d16.map(|c| (c * sigma) >> 14);
+        let u = hit.u;
+        let cross = [
+            dh[1] * u[2] - dh[2] * u[1],
+            dh[2] * u[0] - dh[0] * u[2],
+            dh[0] * u[1] - dh[1] * u[0],
+        ];
+        let n = each3(|i| (cross[i] - hit.nv * dh[i]) >> 15);
+        Some(Surface {
+            index: hit.index,
+            dh,
+            n,
+            nv: hit.nv,
+        })
+    }
+
+    /// The `lights` and `combine` stages at `surface`, or [`Narrow::Precise`] where the lobe
+    /// needs the full-width kernel.
+    #[inline(always)]
+    fn narrow_lights(&self, surface: &Surface, record_hits: bool) -> Narrow {
+        let Surface { index, dh, n, nv } = *surface;
+        let Some(sphere) = self.spheres.get(index) else {
+            return Narrow::Done(None);
+        };
+        let Some(ns) = sphere.narrow.as_ref() else {
+            return Narrow::Precise;
+        };
+        let mut diffuse = [0u32; 3];
+        let mut specular = [0u32; 3];
+        let mut shadowed = 0u32;
+        for (light_index, light) in self.lights.iter().enumerate() {
+            let FixedLight::Distant { to_light, arriving } = *light else {
+                return Narrow::Precise;
+            };
+            let l = to_light.map(|c| c.to_bits() >> 15);
+            let nl = dot(n, l) >> 15;
+            // Toward the silhouette N's error grows as 1/(N·V); where it also lies near the
+            // terminator, the diffuse term is dark, where an sRGB level is smallest: there
+            // the full-width kernel shades.
+            if nv < GRAZING && nl.abs() < GRAZING {
+                return Narrow::Precise;
+            }
+            let own = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
+            let casters = self.casters(index, light_index);
+            if own || (casters != 0 && self.narrow_blocked(index, ns, n, to_light, casters)) {
+                if record_hits && light_index < 32 {
+                    shadowed |= 1 << light_index;
+                }
+                continue;
+            }
+            let arriving = arriving.map(|c| c.to_bits());
+            if nl > 0 {
+                for (acc, i) in diffuse.iter_mut().zip(arriving) {
+                    *acc = acc.saturating_add(scale_q15(i, nl));
+                }
+            }
+            let h = if sphere.blinn {
+                // H = (L + V)/|L + V| with V = −D̂; none where L = −V.
+                let lv = each3(|i| l[i] - dh[i]);
+                let len2 = dot(lv.map(|c| c >> 1), lv.map(|c| c >> 1)) as u32; // Q28
+                if len2 == 0 {
+                    continue;
+                }
+                let (y, e) = rsqrt(len2);
+                // 1/|L + V| = y·2^-e·2¹⁴ (len2 is Q28): H = lv·y·2^(14 − e), Q15.
+                let shift = (e - 14).min(63);
+                let hv = lv.map(|c| (mul_ii(c, y as i32) >> shift) as i32);
+                half_h(each3(|i| n[i] - hv[i]))
+            } else {
+                let r = each3(|i| ((nl * n[i]) >> 14) - l[i]);
+                half_h(each3(|i| r[i] + dh[i]))
+            };
+            if h >= ns.cutoff {
+                continue;
+            }
+            if !ns.lobe_everywhere {
+                return Narrow::Precise;
+            }
+            // The lobe in U1F16: its last 15 bits are below what a colour can show.
+            let lobe = (lobe(h, sphere.shininess) + (1 << 14)) >> 15;
+            for (acc, i) in specular.iter_mut().zip(arriving) {
+                *acc = acc.saturating_add(scale_q16(i, lobe));
+            }
+        }
+        Narrow::Done(Some(Shaded {
+            color: each3(|c| {
+                mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c])
+                    .saturating_add(mul_u16f16(sphere.ks.to_bits(), specular[c]))
+            }),
+            hit: HitRecord {
+                sphere: Some(index as u16),
+                shadowed,
+            },
+        }))
+    }
+
+    /// Whether one of the `casters` (a mask as [`PreparedFixed::casters`] gives it) blocks
+    /// the ray toward the distant light `to_light` from the point of sphere `index` with
+    /// normal `n`, lifted by ε: the shadow stage's caster test, from the narrow normal.
+    ///
+    /// The prepare only sets up the narrow kernel when every sphere is more than `4ε` away
+    /// from each of its casters, so the lifted point is outside them: a caster blocks iff
+    /// the ray moves toward its centre (`b = (O − C)·L < 0`) and passes within its radius
+    /// (`|O − C|² − b² ≤ r²`), and no square root is needed.
+    #[inline(always)]
+    fn narrow_blocked(
+        &self,
+        index: usize,
+        ns: &NarrowSphere,
+        n: V3<i32>,
+        to_light: V3<Unit>,
+        casters: u32,
+    ) -> bool {
+        let Some(own) = self.spheres.get(index) else {
+            return false;
+        };
+        let lift = (ns.radius as i64 + self.epsilon.to_bits() as i64).min(i32::MAX as i64) as i32;
+        let origin = each3(|i| own.center[i].to_bits() as i64 + (mul_ii(lift, n[i]) >> 15));
+        for (k, s) in self.spheres.iter().enumerate() {
+            if k == index || (k < 32 && casters & (1 << k) == 0) {
+                continue;
+            }
+            let oc = each3(|i| to_len(origin[i] - s.center[i].to_bits() as i64));
+            let b = dot_len_unit(oc, to_light);
+            if b >= 0 {
+                continue;
+            }
+            let b = to_len(b).to_bits();
+            let miss = length_sq(oc.map(|c| c.to_bits() as i64)).saturating_sub(mul_ii(b, b));
+            if miss <= s.radius_sq.to_bits() {
+                return true;
+            }
+        }
+        false
+    }
+
+    /// `t` of a hit in raw I16F16, for choosing the nearer of two: `−b/|D| − r·(N·V)`.
+    #[inline(always)]
+    fn narrow_t(&self, hit: &Hit, sigma: i32) -> i64 {
+        let radius = self
+            .spheres
+            .get(hit.index)
+            .and_then(|s| s.narrow.as_ref())
+            .map_or(0, |n| n.radius);
+        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): |b| < 2⁶¹, so (−b) >> 30 fits 31 bits.
+        let along = (mul_uu(((-hit.b) >> 30) as u32, sigma as u32) >> 14) as i64;
+        along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
+    }
+}
+
+/// `½|c|²` of a Q15 difference of two unit vectors, as U3F61 (the lobe's `h`).
+#[inline(always)]
+fn half_h(c: V3<i32>) -> u64 {
+    if c.iter().all(|v| v.unsigned_abs() < 1 << 15) {
+        // Σc² is |c|² in Q30 (< 3·2³⁰), which is h in Q31.
+        let sum = c.iter().map(|&v| (v * v) as u32).sum::<u32>();
+        (sum as u64) << 30
+    } else {
+        // h ≥ ½: two bits fewer are plenty.
+        let sum = c.iter().map(|&v| ((v >> 1) * (v >> 1)) as u32).sum::<u32>();
+        (sum as u64) << 32
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rsqrt_within_one_and_a_half_steps_of_two_to_the_minus_15() {
+        let mut worst = 0.0f64;
+        let mut x = 1u64;
+        while x <= u32::MAX as u64 {
+            for v in [x, x + x / 3, x + x / 2, x + 7 * x / 9] {
+                let Ok(v) = u32::try_from(v) else {
+                    continue;
+                };
+                let (y, e) = rsqrt(v);
+                let got = y as f64 / (e as f64).exp2();
+                let want = 1.0 / (v as f64).sqrt();
+                worst = worst.max((got / want - 1.0).abs());
+            }
+            x = x * 2 + 1;
+        }
+        assert!(worst <= 1.5 / 32768.0, "relative error {worst}");
+    }
+
+    #[test]
+    fn sqrt_q30_within_one_step() {
+        for k in 0..=1000u64 {
+            let x = ((k << 30) / 1000) as u32;
+            let want = ((x as f64) / (1u64 << 30) as f64).sqrt() * 32768.0;
+            let got = sqrt_q30(x) as f64;
+            assert!((got - want).abs() <= 1.5, "{x}: {got} vs {want}");
+        }
+    }
+
+    extern crate std;
+    use crate::runs::merge_runs;
+    use std::vec::Vec;
+
+    /// Every narrow surface of the exponent series at 320×240, with the run it came from.
+    fn surfaces(frame: &PreparedFixed<16, 8>) -> Vec<(Surface, V3<i32>)> {
+        let mut out = Vec::new();
+        for y in 0..frame.height {
+            let spans = frame.row_spans(y);
+            for run in merge_runs::<16>(&spans) {
+                let mut state = frame.narrow_run(run.start, y, &spans).unwrap();
+                for _ in run.start..run.end {
+                    if let Some(surface) = frame.narrow_surface(&state) {
+                        out.push((surface, state.d));
+                    }
+                    frame.narrow_advance(&mut state);
+                }
+            }
+        }
+        out
+    }
+
+    #[test]
+    fn narrow_vectors_within_delta() {
+        const NV_MIN: f64 = 0.3;
+        let scene = crate::exponent_series().unwrap();
+        let frame = PreparedFixed::<16, 8>::new(&scene, 320, 240).unwrap();
+        let FixedLight::Distant { to_light, .. } = frame.lights[0] else {
+            panic!("the exponent series has one distant light");
+        };
+        let l = to_light.map(|c| c.to_bits() as f64 / (1u64 << 30) as f64);
+        let (mut worst_n, mut worst_rv, mut count) = (0.0f64, 0.0f64, 0);
+        for (surface, d) in surfaces(&frame) {
+            let s = &frame.spheres[surface.index];
+            // The exact hit of the narrow ray, in f64.
+            let d = d.map(|c| c as f64);
+            let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+            let dh = d.map(|c| c / len);
+            let oc = s.eye_offset.map(|c| c.to_bits() as f64);
+            let r = (s.radius_sq.to_bits() as f64).sqrt();
+            let b = oc[0] * dh[0] + oc[1] * dh[1] + oc[2] * dh[2];
+            let disc = b * b - (oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2]) + r * r;
+            if disc < 0.0 {
+                continue; // a silhouette pixel the narrow test rounds inside
+            }
+            let t = -b - disc.sqrt();
+            let n = each3(|i| (oc[i] + t * dh[i]) / r);
+            let nl = n[0] * l[0] + n[1] * l[1] + n[2] * l[2];
+            let rv = each3(|i| 2.0 * nl * n[i] - l[i] + dh[i]);
+            // The same from the narrow values.
+            let got_n = surface.n.map(|c| c as f64 / 32768.0);
+            let l15 = to_light.map(|c| c.to_bits() >> 15);
+            let nl15 = dot(surface.n, l15) >> 15;
+            let got_rv = each3(|i| {
+                (((nl15 * surface.n[i]) >> 14) - l15[i] + surface.dh[i]) as f64 / 32768.0
+            });
+            // At the silhouette N·V = √(1 − |u|²) amplifies the error of u without bound
+            // (the geometry itself is that sensitive there): measure where N·V ≥ 0.1.
+            let nv = -(n[0] * dh[0] + n[1] * dh[1] + n[2] * dh[2]);
+            if nv < NV_MIN {
+                continue;
+            }
+            for i in 0..3 {
+                worst_n = worst_n.max((got_n[i] - n[i]).abs());
+                worst_rv = worst_rv.max((got_rv[i] - rv[i]).abs());
+            }
+            count += 1;
+        }
+        std::println!(
+            "{count} surfaces: |ΔN| ≤ {:.2} steps, |Δ(R − V)| ≤ {:.2} steps of 2⁻¹⁵ (DELTA is {} steps)",
+            worst_n * 32768.0,
+            worst_rv * 32768.0,
+            DELTA * 32768.0
+        );
+        assert!(count > 10_000, "{count} surfaces");
+        assert!(worst_rv <= DELTA as f64, "R − V off by {worst_rv}");
+    }
+
+    #[test]
+    fn exponent_series_hands_few_pixels_over() {
+        let scene = crate::exponent_series().unwrap();
+        let frame = PreparedFixed::<16, 8>::new(&scene, 320, 240).unwrap();
+        let all = surfaces(&frame);
+        let precise = all
+            .iter()
+            .filter(|(s, _)| matches!(frame.narrow_lights(s, false), Narrow::Precise))
+            .count();
+        let share = precise as f64 / all.len() as f64;
+        std::println!(
+            "{precise} of {} covered pixels use the full-width kernel",
+            all.len()
+        );
+        assert!(share < 0.06, "{:.2}% handed over", 100.0 * share);
+    }
+
+    #[test]
+    fn scale_q15_is_exact() {
+        for a in [0u32, 1, 65535, 65536, 1 << 20, u32::MAX / 3] {
+            for b in [0, 1, 12345, ONE] {
+                let want = ((a as u64 * b as u64) >> 15).min(u32::MAX as u64) as u32;
+                assert_eq!(scale_q15(a, b), want, "{a}·{b}");
+            }
+        }
+    }
+}
