@@ -8,7 +8,7 @@
 //! rounding accumulates. Rows, pixels and slices are only reached through `get_mut` and
 //! iterators, and every index is checked, so nothing here can panic.
 
-use super::kernel::ray;
+use super::kernel::{ray, Shaded};
 use super::narrow::Narrow;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
@@ -39,6 +39,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let _ = out.push(span);
         }
         out
+    }
+
+    /// The full-width kernel on the unnormalized primary direction `dir` of pixel `x`: one
+    /// copy in the binary, shared by both row loops.
+    #[inline(never)]
+    fn shade_ray(
+        &self,
+        dir: V3<I16F48>,
+        x: u32,
+        spans: &[Option<Span>],
+        record_hits: bool,
+    ) -> Option<Shaded> {
+        ray(dir).and_then(|d| self.shade(d, x, spans, record_hits))
     }
 
     /// The unnormalized primary direction of pixel `(x, y)`:
@@ -89,8 +102,9 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                 for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                     let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS) {
                         Narrow::Done(shaded) => shaded,
-                        Narrow::Precise => ray(self.direction(column, y))
-                            .and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS)),
+                        Narrow::Precise => {
+                            self.shade_ray(self.direction(column, y), column, &spans, P::NEEDS_HITS)
+                        }
                     };
                     self.narrow_advance(&mut narrow);
                     *px = match shaded {
@@ -102,7 +116,7 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
             }
             let mut dir = self.direction(start as u32, y);
             for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
-                let shaded = ray(dir).and_then(|d| self.shade(d, column, &spans, P::NEEDS_HITS));
+                let shaded = self.shade_ray(dir, column, &spans, P::NEEDS_HITS);
                 *px = match shaded {
                     Some(s) => encode(s.color, s.hit, encoding, column, y),
                     None => background.at(column as usize),
