@@ -30,6 +30,14 @@ use crate::pixel::LinearRgb;
 use crate::vec3::Vec3;
 use core::fmt;
 
+/// The default sphere capacity `S` of [`Scene`], [`Prepared`](crate::Prepared) and
+/// [`PreparedFixed`](crate::PreparedFixed): `Scene` alone is `Scene<16, 8>`, and so is every
+/// built-in scene ([`crate::presets`]), so a preset goes straight into `Prepared::<Simd8>::new`.
+pub const DEFAULT_SPHERES: usize = 16;
+/// The default light capacity `L` of [`Scene`], [`Prepared`](crate::Prepared) and
+/// [`PreparedFixed`](crate::PreparedFixed) (see [`DEFAULT_SPHERES`]).
+pub const DEFAULT_LIGHTS: usize = 8;
+
 /// Largest accepted magnitude of a coordinate component and of a radius, in scene units.
 pub const MAX_COORDINATE: f32 = 1.0e6;
 /// Smallest accepted radius: `r²` is then a normal `f32` and `1/r` is finite. Below it the
@@ -636,6 +644,11 @@ impl Light {
 
 /// A validated scene holding up to `S` spheres and `L` lights.
 ///
+/// Without capacities, `Scene` is `Scene<`[`DEFAULT_SPHERES`]`, `[`DEFAULT_LIGHTS`]`>`, the
+/// capacities of the built-in scenes and the defaults of the prepared frames. A scene of other
+/// capacities is prepared with them inferred: `Prepared::<Scalar, _, _>::new(&scene, w, h)`
+/// or `PreparedFixed::new(&scene, w, h)`. (`Prepared::<Scalar>` alone means the defaults.)
+///
 /// ```
 /// use shadeline::{Scene, Sphere, Material, Light, Camera, Vec3, LinearRgb};
 /// let camera = Camera {
@@ -655,7 +668,7 @@ impl Light {
 /// # Ok::<(), shadeline::SceneError>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Scene<const S: usize = 16, const L: usize = 8> {
+pub struct Scene<const S: usize = DEFAULT_SPHERES, const L: usize = DEFAULT_LIGHTS> {
     camera: Camera,
     /// The camera's orthonormal `(right, up, forward)`, derived once when it is checked.
     basis: (Vec3, Vec3, Vec3),
