@@ -8,6 +8,9 @@
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
 //! ```
 //!
+//! `render` uses the widest SIMD path unless `--path` names another (its frames are
+//! bit-identical to `scalar`'s); `compare` runs every path.
+//!
 //! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
 //! 768×432). Without a scene file or preset both use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file, size or path is reported as
@@ -41,9 +44,10 @@ enum Command {
     Render {
         #[command(flatten)]
         input: Input,
-        /// The path: `scalar` (the float reference of the crate, the default), `simd4`,
-        /// `simd8`, `simd` for the widest, or `fixed` (integers only per pixel).
-        #[arg(long, default_value = "scalar", value_parser = PossibleValuesParser::new(paths::names()))]
+        /// The path: `simd` for the widest SIMD path (the default: it gives the same bits as
+        /// `scalar`, faster), `simd4`, `simd8`, `scalar` (the float reference of the crate),
+        /// or `fixed` (integers only per pixel).
+        #[arg(long, default_value = paths::SIMD_ALIAS.0, value_parser = PossibleValuesParser::new(paths::names()))]
         path: String,
         /// Where to write the PNG.
         #[arg(short, long, default_value = "spheres.png")]

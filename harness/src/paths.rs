@@ -76,7 +76,7 @@ fn boxed<R: Render + Sync + 'static>(
 const S: usize = MAX_SPHERES;
 const L: usize = MAX_LIGHTS;
 
-/// Every path, narrowest first. The first is the default of `render`.
+/// Every path, narrowest first. `render`'s default is [`SIMD_ALIAS`], the widest SIMD path.
 pub const PATHS: &[Path] = &[
     path("scalar", |s, w, h| {
         boxed(Prepared::<Scalar, S, L>::new(s, w, h))
@@ -97,7 +97,7 @@ const fn path(name: &'static str, prepare: Prepare) -> Path {
     Path { name, prepare }
 }
 
-/// The alias for the widest SIMD path.
+/// The alias for the widest SIMD path, and `render`'s default path.
 pub const SIMD_ALIAS: (&str, &str) = ("simd", "simd8");
 
 /// The path called `name` (or the alias `simd`).

@@ -138,6 +138,32 @@ fn render_writes_an_rgb_png_of_the_asked_size() {
 }
 
 #[test]
+fn render_uses_the_widest_simd_path_unless_told_otherwise() {
+    let dir = temp_dir("default-path");
+    let size = ["--width", "40", "--height", "30"];
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> = ["render"]
+            .iter()
+            .chain(&size)
+            .chain(extra)
+            .copied()
+            .collect();
+        let out = shadeline(&args, &dir);
+        assert!(out.status.success(), "{}", stderr(&out));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let default = run(&["-o", "default.png"]);
+    assert!(default.starts_with("40x30 simd8 "), "{default}");
+    let scalar = run(&["--path", "scalar", "-o", "scalar.png"]);
+    assert!(scalar.starts_with("40x30 scalar "), "{scalar}");
+    // The same bits either way.
+    assert_eq!(
+        read_png(&dir.join("default.png")).4,
+        read_png(&dir.join("scalar.png")).4
+    );
+}
+
+#[test]
 fn the_thread_count_does_not_change_a_byte() {
     let dir = temp_dir("threads");
     std::fs::write(dir.join("scene.toml"), exponent_series_text()).unwrap();
