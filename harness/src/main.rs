@@ -14,15 +14,17 @@
 //! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
 //! 768×432). Without a scene file or preset both use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file, size or path is reported as
-//! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2; a failure to write the
-//! output is exit code 1.
+//! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2, and so is a frame too
+//! large for the memory (the message names its size; buffers are allocated fallibly). The
+//! output file is opened before rendering: an output that cannot be written is exit code 1,
+//! before the render rather than after it.
 
 use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
 use shadeline_harness::compare::{self, Row};
-use shadeline_harness::image::RgbImage;
+use shadeline_harness::image::PngFile;
 use shadeline_harness::paths::{self, Path, PATHS};
-use shadeline_harness::rows::default_threads;
+use shadeline_harness::rows::{check_memory, default_threads, new_frame, FrameError};
 use shadeline_harness::scene_file::{
     builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
 };
@@ -101,6 +103,22 @@ impl Failure {
     fn output(message: String) -> Self {
         Failure { message, code: 1 }
     }
+
+    /// A frame that could not be rendered: a refusal of the renderer, or a frame too large
+    /// for the memory (exit code 2, naming the size).
+    fn frame(e: FrameError) -> Self {
+        Failure::input(format!("error: {e}"))
+    }
+}
+
+/// Opens the output before any rendering, so an unwritable path fails at once (exit code 1).
+fn open_output(output: &std::path::Path) -> Result<PngFile, Failure> {
+    PngFile::open(output)
+        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))
+}
+
+fn write_failed(output: &std::path::Path) -> impl FnOnce(std::io::Error) -> Failure + '_ {
+    move |e| Failure::output(format!("{}: error: cannot write: {e}", output.display()))
 }
 
 fn main() -> ExitCode {
@@ -175,9 +193,12 @@ fn render(
         .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
     let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
     let frame = (path.prepare)(&file.scene, file.width, file.height).map_err(failed)?;
+    let png = open_output(output)?;
+    let mut rgb =
+        new_frame(file.width, file.height).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
     // One untimed frame first: it faults the buffer's pages in and warms the caches, so the
     // timed frames measure shading, not the operating system.
-    let mut rgb = frame.render_rgb(threads).map_err(failed)?;
+    frame.render_rgb_into(&mut rgb, threads).map_err(failed)?;
     let mut times = Vec::with_capacity(repeat);
     for _ in 0..repeat {
         let start = Instant::now();
@@ -187,9 +208,8 @@ fn render(
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
     let best = times[0];
-    RgbImage::from_pixels(file.width, file.height, &rgb)
-        .write_png(output)
-        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
+    png.write_pixels(file.width, file.height, &rgb)
+        .map_err(write_failed(output))?;
     let megapixels = f64::from(file.width) * f64::from(file.height) / 1e6;
     println!(
         "{}x{} {} on {} thread{}: {:.2} ms per frame (median of {}, best {:.2} ms), {:.1} Mpix/s -> {}",
@@ -214,8 +234,12 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     let file = input.load()?;
     let threads = input.threads();
     let (scene, w, h) = (&file.scene, file.width, file.height);
-    let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
-    let reference = compare::render_reference(scene, w, h, threads).map_err(failed)?;
+    let failed = |e: shadeline::RenderError| Failure::frame(e.into());
+    let png = open_output(output)?;
+    // Every buffer compare holds at once, checked before the first frame is rendered.
+    check_memory(w, h, compare::bytes_per_pixel(PATHS.len()))
+        .map_err(|e| Failure::frame(e.into()))?;
+    let reference = compare::render_reference(scene, w, h, threads).map_err(Failure::frame)?;
     let ref_rgb = compare::reference_rgb(&reference);
     let mut rows = Vec::new();
     let mut images = Vec::new();
@@ -225,14 +249,16 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         for _ in 0..RUNS {
             let start = Instant::now();
             rgb = (path.prepare)(scene, w, h)
-                .and_then(|frame| frame.render_rgb(threads))
-                .map_err(failed)?;
+                .map_err(failed)?
+                .render_rgb(threads)
+                .map_err(Failure::frame)?;
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }
         times.sort_by(f64::total_cmp);
         let hits = (path.prepare)(scene, w, h)
-            .and_then(|frame| frame.render_hits(threads))
-            .map_err(failed)?;
+            .map_err(failed)?
+            .render_hits(threads)
+            .map_err(Failure::frame)?;
         rows.push(Row {
             name: path.name,
             stats: compare::stats(&reference, &ref_rgb, &rgb, &hits),
@@ -245,9 +271,8 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         if threads == 1 { "" } else { "s" }
     );
     print!("{}", compare::table(&rows));
-    compare::picture(w, h, &ref_rgb, &images)
-        .write_png(output)
-        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
+    png.write_image(&compare::picture(w, h, &ref_rgb, &images))
+        .map_err(write_failed(output))?;
     println!(
         "wrote {} (top: reference | {}; below each path: |path - reference| x {})",
         output.display(),

@@ -114,6 +114,83 @@ fn a_bad_size_on_the_command_line_is_refused() {
     );
 }
 
+/// Runs the binary with its address space limited to 1 GiB (`ulimit -v`), so that a frame
+/// larger than that cannot be allocated on any machine, however much memory it has.
+#[cfg(unix)]
+fn shadeline_in_1_gib(args: &[&str], dir: &Path) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576 && exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_shadeline"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("sh runs")
+}
+
+#[cfg(unix)]
+#[test]
+fn a_frame_too_large_for_the_memory_is_refused_with_its_size_not_an_abort() {
+    let dir = temp_dir("huge");
+    let huge = ["--width", "65535", "--height", "65535"];
+    for command in ["render", "compare"] {
+        let args: Vec<&str> = [command].iter().chain(&huge).copied().collect();
+        let out = shadeline_in_1_gib(&args, &dir);
+        assert_refused(
+            &out,
+            &["error:", "65535x65535 frame", "cannot allocate", "GB"],
+        );
+    }
+    // Nothing is left behind, and an existing output keeps its contents.
+    assert!(!dir.join("spheres.png").exists());
+    assert!(!dir.join("compare.png").exists());
+    std::fs::write(dir.join("old.png"), "old").unwrap();
+    let args = [
+        "render", "--width", "65535", "--height", "65535", "-o", "old.png",
+    ];
+    assert_refused(&shadeline_in_1_gib(&args, &dir), &["65535x65535 frame"]);
+    assert_eq!(std::fs::read_to_string(dir.join("old.png")).unwrap(), "old");
+}
+
+#[cfg(unix)]
+#[test]
+fn an_unwritable_output_is_refused_before_rendering() {
+    let dir = temp_dir("unwritable");
+    // With a frame that cannot be allocated: the output is checked first, so the message
+    // is about the output.
+    for command in ["render", "compare"] {
+        let out = shadeline_in_1_gib(
+            &[
+                command,
+                "--width",
+                "65535",
+                "--height",
+                "65535",
+                "-o",
+                "no-dir/out.png",
+            ],
+            &dir,
+        );
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.starts_with("no-dir/out.png: error: cannot write:"),
+            "{err}"
+        );
+    }
+    // A directory is not a file to write.
+    let out = shadeline(
+        &["render", "--width", "8", "--height", "6", "-o", "."],
+        &dir,
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(".: error: cannot write:"),
+        "{}",
+        stderr(&out)
+    );
+}
+
 #[test]
 fn render_writes_an_rgb_png_of_the_asked_size() {
     let dir = temp_dir("render-size");
