@@ -21,6 +21,7 @@
 
 use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
+use shadeline::MAX_DIMENSION;
 use shadeline_harness::compare::{self, Row};
 use shadeline_harness::image::PngFile;
 use shadeline_harness::paths::{self, Path, PATHS};
@@ -55,7 +56,7 @@ enum Command {
         #[arg(short, long, default_value = "spheres.png")]
         output: PathBuf,
         /// Timed frames after one untimed warm-up frame; the median and best are reported.
-        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..))]
+        #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
         repeat: u16,
     },
     /// Compare every path with the f64 reference: a table, and a picture of the differences.
@@ -75,17 +76,26 @@ struct Input {
     scene: Option<PathBuf>,
     /// A built-in scene instead of a file: `exponent-series` or `materials` (the gallery of
     /// reflection models).
-    #[arg(long, conflicts_with = "scene", value_parser = PossibleValuesParser::new(PRESETS))]
+    #[arg(long, value_parser = PossibleValuesParser::new(PRESETS))]
     preset: Option<String>,
     /// Image width in pixels, instead of the scene file's.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     width: Option<u32>,
     /// Image height in pixels, instead of the scene file's.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     height: Option<u32>,
     /// Threads to render rows on [default: the available parallelism].
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
     threads: Option<u16>,
+}
+
+/// `--width`/`--height`: a whole number of pixels. Negative numbers reach this parser as
+/// values (rather than as unknown options), so `-5` is refused as a size; 0 and sizes above
+/// the largest are refused by the size check, which names the limit.
+fn pixels(value: &str) -> Result<u32, String> {
+    value
+        .parse()
+        .map_err(|_| format!("a size is a whole number of pixels, from 1 to {MAX_DIMENSION}"))
 }
 
 /// A failure: the message (already naming the file or option) and the exit code.
@@ -150,7 +160,14 @@ impl Input {
     fn load(&self) -> Result<SceneFile, Failure> {
         let failed = |e: shadeline::SceneError| Failure::input(format!("error: {e}"));
         let mut file = match (&self.scene, &self.preset) {
-            (Some(path), _) => read_scene(path)?,
+            (Some(path), Some(name)) => {
+                return Err(Failure::input(format!(
+                    "error: both a scene file ({}) and --preset {name} were given: give one \
+                     or the other",
+                    path.display()
+                )))
+            }
+            (Some(path), None) => read_scene(path)?,
             (None, Some(name)) => preset(name)
                 .ok_or_else(|| Failure::input(format!("error: unknown preset `{name}`")))?
                 .map_err(failed)?,

@@ -192,6 +192,60 @@ fn an_unwritable_output_is_refused_before_rendering() {
 }
 
 #[test]
+fn a_negative_number_is_refused_as_a_value_not_taken_for_an_option() {
+    let dir = temp_dir("negative");
+    for (option, words) in [
+        (
+            "--width",
+            "a size is a whole number of pixels, from 1 to 65535",
+        ),
+        (
+            "--height",
+            "a size is a whole number of pixels, from 1 to 65535",
+        ),
+        ("--threads", "-5 is not in 1..=65535"),
+        ("--repeat", "-5 is not in 1..=65535"),
+    ] {
+        let out = shadeline(&["render", option, "-5"], &dir);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(&format!("invalid value '-5' for '{option}")),
+            "{err}"
+        );
+        assert!(err.contains(words), "{err}");
+        assert!(!err.contains("-- -5"), "{err}");
+    }
+    assert!(!dir.join("spheres.png").exists());
+}
+
+#[test]
+fn a_scene_file_and_a_preset_together_are_one_accurate_message() {
+    let dir = temp_dir("file-and-preset");
+    std::fs::write(dir.join("scene.toml"), exponent_series_text()).unwrap();
+    for args in [
+        ["render", "scene.toml", "--preset", "materials"],
+        ["compare", "--preset", "materials", "scene.toml"],
+    ] {
+        let out = shadeline(&args, &dir);
+        assert_refused(
+            &out,
+            &["error: both a scene file (scene.toml) and --preset materials were given"],
+        );
+        assert!(!stderr(&out).contains("Usage"), "{}", stderr(&out));
+    }
+}
+
+#[test]
+fn an_empty_scene_file_names_the_missing_table_once() {
+    let dir = temp_dir("empty");
+    std::fs::write(dir.join("empty.toml"), "").unwrap();
+    let out = shadeline(&["render", "empty.toml"], &dir);
+    assert_refused(&out, &["empty.toml:1:1: error: missing key `image`"]);
+    assert_eq!(stderr(&out).matches("image").count(), 1, "{}", stderr(&out));
+}
+
+#[test]
 fn render_writes_an_rgb_png_of_the_asked_size() {
     let dir = temp_dir("render-size");
     let out = shadeline(
