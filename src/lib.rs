@@ -77,7 +77,7 @@
 //!
 //! | feature | default | what it adds |
 //! |---|---|---|
-//! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Rgb888`, `Gray8`) |
+//! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Bgr565`, `Rgb888`, `Gray8`), and `From` conversions both ways between those colours and shadeline's formats of the same names |
 //!
 //! ## Targets and MSRV
 //!
