@@ -145,8 +145,11 @@ impl PngFile {
             return Err(io::Error::other("the PNG file was already written"));
         };
         let write = || {
-            file.set_len(0)?;
-            file.rewind()?;
+            // A regular file is emptied first; a pipe or a device (`-o /dev/stdout`) cannot be.
+            if file.metadata()?.is_file() {
+                file.set_len(0)?;
+                file.rewind()?;
+            }
             let mut out = BufWriter::new(&mut file);
             write_rgb_png(&mut out, width, height, row)?;
             out.flush()

@@ -123,10 +123,10 @@ impl Failure {
 
 /// Opens the output before any rendering, so an unwritable path fails at once (exit code 1).
 fn open_output(output: &std::path::Path) -> Result<PngFile, Failure> {
-    PngFile::open(output)
-        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))
+    PngFile::open(output).map_err(write_failed(output))
 }
 
+/// The output could not be written (exit code 1).
 fn write_failed(output: &std::path::Path) -> impl FnOnce(std::io::Error) -> Failure + '_ {
     move |e| Failure::output(format!("{}: error: cannot write: {e}", output.display()))
 }
