@@ -1,7 +1,7 @@
 //! The reflection models, in one place: every model as a function of the directions, written
 //! once over [`Real`] and [`Vec3`] so that the float kernel evaluates it on its lanes (`f32`,
 //! `f32x4`, `f32x8`) and the law tests (`tests/brdf_laws.rs`) on `f64`. The kernel's helpers
-//! ([`terms`] and its flags) are public only for those tests and hidden from the docs.
+//! (`terms` and its flags) are public only for those tests and hidden from the docs.
 //!
 //! Notation: `N` the unit normal, `L` the unit vector toward the light (`ω_i`), `V` the unit
 //! vector toward the eye (`ω_o`), `R = 2(N·L)N − L` the light mirrored about the normal,
@@ -43,11 +43,11 @@
 //!
 //! How the kernel uses this: the per-material constants are a [`Params`], computed once per
 //! frame by [`Params::of`] (in prepare, in `f32`; normalization factors and `F₀` folded in).
-//! Per light, [`terms`] returns the diffuse factor and the specular colour, times `cos θ_i`
+//! Per light, `terms` returns the diffuse factor and the specular colour, times `cos θ_i`
 //! for the normalized models; the kernel accumulates `I·terms` and multiplies by
-//! `kd·albedo` and `ks` once per pixel. For the classic models [`terms`] computes only
+//! `kd·albedo` and `ks` once per pixel. For the classic models `terms` computes only
 //! `max(0, N·L)` and the one lobe, nothing else. [`value`] is `f` itself, from the same
-//! [`terms`], for the law tests. The fixed-point path mirrors
+//! `terms`, for the law tests. The fixed-point path mirrors
 //! these formulas in integers (see `src/fixed/mod.rs`), and the `f64`
 //! [`reference`](crate::reference) implements them again, independently.
 
@@ -173,7 +173,7 @@ pub fn blinn_phong_normalization<T: ScalarReal>(n: T) -> T {
     num / (T::splat(8.0) * T::pi() * ((-n / T::splat(2.0)).exp2() + n))
 }
 
-/// A material's constants, per lane: everything [`terms`] needs, normalizations folded in.
+/// A material's constants, per lane: everything `terms` needs, normalizations folded in.
 ///
 /// Flags are numbers (1 set, 0 clear) so that a packet's lanes can hold different materials;
 /// [`Params::masks`] turns them into lane masks once per packet.
@@ -214,7 +214,7 @@ pub struct Masks<T: Real> {
 }
 
 #[doc(hidden)]
-/// Which optional parts of [`terms`] a packet needs: each is skipped as a whole when no lane
+/// Which optional parts of `terms` a packet needs: each is skipped as a whole when no lane
 /// needs it, which changes no bit (a skipped part's contribution is exactly zero or one on
 /// the lanes that do not need it).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
@@ -430,7 +430,7 @@ pub fn terms<T: Pow>(
     }
 }
 
-/// The BRDF `f(ω_i, ω_o)` itself, per channel: [`terms`] with everything present, combined
+/// The BRDF `f(ω_i, ω_o)` itself, per channel: `terms` with everything present, combined
 /// as the kernel combines it, divided by `cos θ_i`. For directions above the surface
 /// (`N·L > 0`, `N·V > 0`); elsewhere it is not defined here.
 pub fn value<T: Pow>(p: &Params<T>, n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> Vec3<T> {

@@ -1,24 +1,39 @@
 //! embedded-graphics support (feature `embedded-graphics`): draw a prepared frame into any
-//! [`DrawTarget`], such as a `mipidsi` display, with few and large transfers.
+//! embedded-graphics `DrawTarget`, such as a `mipidsi` display, with few and large transfers,
+//! and convert shadeline's pixel formats to and from embedded-graphics' colours.
 //!
-//! [`Drawing`] is a [`Drawable`] for any [`Render`] (every path, with its
+//! [`Drawing`] is a `Drawable` for any [`Render`] (every path, with its
 //! [`Encoding`](crate::Encoding)). It draws row by row:
 //!
 //! - a row the spheres may touch ([`Render::row_coverage`] is `Some`) is one
-//!   [`fill_contiguous`](DrawTarget::fill_contiguous) over the full-width one-row rectangle;
-//! - a row of pure background that encodes to one colour is one
-//!   [`fill_solid`](DrawTarget::fill_solid) over the same rectangle (a dithered background
-//!   that is not exactly a level varies along the row and takes the contiguous fill instead).
+//!   `DrawTarget::fill_contiguous` over the full-width one-row rectangle;
+//! - a row of pure background that encodes to one colour is one `DrawTarget::fill_solid`
+//!   over the same rectangle (a dithered background that is not exactly a level varies along
+//!   the row and takes the contiguous fill instead).
 //!
 //! So a display driver gets one window command and one long pixel stream per row, and
 //! background rows cost it no per-pixel iteration at all. Each pixel equals what
-//! [`Render::render_line`] gives for the matching shadeline format, converted exactly:
+//! [`Render::render_line`] gives for the matching shadeline format, converted exactly. The
+//! colours ([`EgColor`]), all in `embedded_graphics_core::pixelcolor`, and their formats:
 //!
 //! | embedded-graphics colour | shadeline format | conversion |
 //! |---|---|---|
-//! | [`pixelcolor::Rgb565`] | [`Rgb565`](crate::Rgb565) | the 5/6/5 levels |
-//! | [`pixelcolor::Rgb888`] | [`Rgb888`](crate::Rgb888) | the 8-bit levels |
-//! | [`pixelcolor::Gray8`] | [`Gray8`](crate::Gray8) | the 8-bit luma |
+//! | `pixelcolor::Rgb565` | [`Rgb565`](crate::Rgb565) | the 5/6/5 levels |
+//! | `pixelcolor::Bgr565` | [`Bgr565`](crate::Bgr565) | the 5/6/5 levels (blue in the high bits in both) |
+//! | `pixelcolor::Rgb888` | [`Rgb888`](crate::Rgb888) | the 8-bit levels |
+//! | `pixelcolor::Gray8` | [`Gray8`](crate::Gray8) | the 8-bit luma |
+//!
+//! Each pair converts both ways with `From` (the same levels, no rounding; for the 16-bit
+//! formats also the same `u16`), so a shadeline pixel from [`Render::render_line`] goes
+//! straight into embedded-graphics code and back:
+//!
+//! ```
+//! use embedded_graphics_core::pixelcolor::{self, RgbColor};
+//! let p = shadeline::Rgb565::pack(31, 0, 4);
+//! let c = pixelcolor::Rgb565::from(p);
+//! assert_eq!((c.r(), c.g(), c.b()), (31, 0, 4));
+//! assert_eq!(shadeline::Rgb565::from(c), p);
+//! ```
 //!
 //! No allocation and no width limit: the colours handed to `fill_contiguous` come from an
 //! iterator that renders [`LINE_CHUNK`] pixels at a time into a stack buffer
@@ -57,44 +72,81 @@ use crate::render::{Render, LINE_CHUNK};
 use core::marker::PhantomData;
 use embedded_graphics_core::draw_target::DrawTarget;
 use embedded_graphics_core::geometry::{Point, Size};
-use embedded_graphics_core::pixelcolor::{self, PixelColor};
+use embedded_graphics_core::pixelcolor::{self, GrayColor, PixelColor, RgbColor};
 use embedded_graphics_core::primitives::Rectangle;
 use embedded_graphics_core::Drawable;
 
-/// An embedded-graphics colour that a shadeline format converts to exactly.
+/// An embedded-graphics colour that a shadeline format converts to exactly: the colours a
+/// [`Drawing`] can draw (`pixelcolor::Rgb565`, `Bgr565`, `Rgb888` and `Gray8`).
 pub trait EgColor: PixelColor {
     /// The shadeline format rendered for this colour.
     type Pixel: BytePixel + PartialEq;
-    /// The colour of a rendered pixel (same levels, no rounding).
+    /// The colour of a rendered pixel (same levels, no rounding): the `From` conversion.
     fn from_pixel(p: Self::Pixel) -> Self;
 }
 
-impl EgColor for pixelcolor::Rgb565 {
-    type Pixel = crate::Rgb565;
-    #[inline]
-    fn from_pixel(p: crate::Rgb565) -> Self {
+/// The conversions both ways between a shadeline format and its embedded-graphics colour, and
+/// [`EgColor`] for the colour.
+macro_rules! colour_pair {
+    ($name:ident, $to_eg:expr, $from_eg:expr) => {
+        impl From<crate::$name> for pixelcolor::$name {
+            /// The same levels as an embedded-graphics colour.
+            #[inline]
+            fn from(p: crate::$name) -> Self {
+                $to_eg(p)
+            }
+        }
+
+        impl From<pixelcolor::$name> for crate::$name {
+            /// The same levels as a shadeline pixel.
+            #[inline]
+            fn from(c: pixelcolor::$name) -> Self {
+                $from_eg(c)
+            }
+        }
+
+        impl EgColor for pixelcolor::$name {
+            type Pixel = crate::$name;
+            #[inline]
+            fn from_pixel(p: crate::$name) -> Self {
+                Self::from(p)
+            }
+        }
+    };
+}
+
+colour_pair!(
+    Rgb565,
+    |p: crate::Rgb565| {
         let (r, g, b) = p.levels();
         pixelcolor::Rgb565::new(r, g, b)
+    },
+    |c: pixelcolor::Rgb565| crate::Rgb565::pack(c.r().into(), c.g().into(), c.b().into())
+);
+colour_pair!(
+    Bgr565,
+    |p: crate::Bgr565| {
+        let (r, g, b) = p.levels();
+        pixelcolor::Bgr565::new(r, g, b)
+    },
+    |c: pixelcolor::Bgr565| crate::Bgr565::pack(c.r().into(), c.g().into(), c.b().into())
+);
+colour_pair!(
+    Rgb888,
+    |p: crate::Rgb888| pixelcolor::Rgb888::new(p.r, p.g, p.b),
+    |c: pixelcolor::Rgb888| crate::Rgb888 {
+        r: c.r(),
+        g: c.g(),
+        b: c.b(),
     }
-}
+);
+colour_pair!(
+    Gray8,
+    |p: crate::Gray8| pixelcolor::Gray8::new(p.0),
+    |c: pixelcolor::Gray8| crate::Gray8(c.luma())
+);
 
-impl EgColor for pixelcolor::Rgb888 {
-    type Pixel = crate::Rgb888;
-    #[inline]
-    fn from_pixel(p: crate::Rgb888) -> Self {
-        pixelcolor::Rgb888::new(p.r, p.g, p.b)
-    }
-}
-
-impl EgColor for pixelcolor::Gray8 {
-    type Pixel = crate::Gray8;
-    #[inline]
-    fn from_pixel(p: crate::Gray8) -> Self {
-        pixelcolor::Gray8::new(p.0)
-    }
-}
-
-/// A prepared frame as an embedded-graphics [`Drawable`] of colour `C` (see the
+/// A prepared frame as an embedded-graphics `Drawable` of colour `C` (see the
 /// [module docs](self)). `C` is usually inferred from the target.
 #[derive(Debug)]
 pub struct Drawing<'a, R, C> {

@@ -22,8 +22,9 @@
 //!     intensity: 2.0,
 //! })?;
 //!
-//! // Prepare once per frame, then shade rows into any buffer you own.
-//! let frame = Prepared::<Scalar, 4, 2>::new(&scene, 48, 32)?;
+//! // Prepare once per frame, then shade rows into any buffer you own. The capacities are
+//! // inferred from the scene (`_`); `Prepared::<Scalar>` alone would mean the defaults.
+//! let frame = Prepared::<Scalar, _, _>::new(&scene, 48, 32)?;
 //! let mut line = [Rgb888::default(); 48];
 //! frame.render_line(16, &mut line)?;
 //! assert_ne!(line[24], line[0]); // the sphere is in the middle, the background at the edge
@@ -76,7 +77,7 @@
 //!
 //! | feature | default | what it adds |
 //! |---|---|---|
-//! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Rgb888`, `Gray8`) |
+//! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Bgr565`, `Rgb888`, `Gray8`), and `From` conversions both ways between those colours and shadeline's formats of the same names |
 //!
 //! ## Targets and MSRV
 //!
@@ -135,12 +136,19 @@ pub use pixel::{
     Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
 };
 pub use presets::{
-    exponent_series, exponent_series_with_capacity, materials, EXPONENT_SERIES_SIZE, MATERIALS_SIZE,
+    exponent_series, exponent_series_with_capacity, materials, materials_with_capacity,
+    EXPONENT_SERIES_SIZE, MATERIALS_SIZE,
 };
 pub use render::{Encoded, Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
 pub use runs::Span;
 pub use scene::{
     Camera, Item, ItemKind, Light, Lobe, Material, Metal, Model, Problem, Scene, SceneError,
-    Specular, Sphere, Surface, MORE_LOBES,
+    Specular, Sphere, Surface, DEFAULT_LIGHTS, DEFAULT_SPHERES, MORE_LOBES,
 };
 pub use vec3::Vec3;
+
+/// The README's Rust examples, compiled and run as doctests (`cargo test --doc`), so the
+/// README cannot drift from the API. Its other blocks are marked `sh` or `text`.
+#[cfg(doctest)]
+#[doc = include_str!("../README.md")]
+pub struct ReadmeDoctests;

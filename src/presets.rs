@@ -17,6 +17,9 @@ pub const EXPONENT_SERIES_SIZE: (u32, u32) = (1024, 747);
 ///
 /// Returns a `Result` rather than panicking, so firmware that links it keeps no panic path;
 /// with these numbers it is always `Ok`.
+///
+/// The scene has the default capacities ([`DEFAULT_SPHERES`](crate::scene::DEFAULT_SPHERES),
+/// [`DEFAULT_LIGHTS`](crate::scene::DEFAULT_LIGHTS)), as every built-in scene has.
 pub fn exponent_series() -> Result<Scene, SceneError> {
     exponent_series_with_capacity()
 }
@@ -83,7 +86,29 @@ pub const MATERIALS_SIZE: (u32, u32) = (768, 432);
 /// `n` = 2, 10, 50, 250, 1250, as in the classic series: unlike it, the highlight dims as it widens.
 /// Every material is energy conserving ([`Material::is_energy_conserving`]). The same
 /// numbers are in `scenes/materials.toml`.
-pub fn materials() -> Result<Scene<16, 4>, SceneError> {
+///
+/// Like [`exponent_series`], it returns a scene of the default capacities
+/// ([`DEFAULT_SPHERES`](crate::scene::DEFAULT_SPHERES),
+/// [`DEFAULT_LIGHTS`](crate::scene::DEFAULT_LIGHTS)), so either preset goes into the same
+/// prepared type:
+///
+/// ```
+/// use shadeline::{exponent_series, materials, Prepared, Render, Rgb565, Simd8};
+/// for scene in [exponent_series()?, materials()?] {
+///     let frame = Prepared::<Simd8>::new(&scene, 32, 24)?;
+///     frame.render_line(12, &mut [Rgb565::default(); 32])?;
+/// }
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn materials() -> Result<Scene, SceneError> {
+    materials_with_capacity()
+}
+
+/// [`materials`] built straight into a scene of capacities `S` spheres and `L` lights (at
+/// least 10 and 2; smaller capacities give [`SceneError`] naming the sphere or light that
+/// does not fit).
+pub fn materials_with_capacity<const S: usize, const L: usize>() -> Result<Scene<S, L>, SceneError>
+{
     use crate::scene::{Lobe, Metal, Specular, Surface};
     let camera = Camera {
         position: Vec3::new(0.0, 0.0, 13.0),

@@ -4,7 +4,7 @@
 //! [`Scene::add_light`] check every number as it comes in and return a [`SceneError`] that
 //! names the item and the field, so nothing downstream (prepare, the kernels, the row driver)
 //! ever sees a NaN, a zero-length direction or a degenerate camera. Capacities are const
-//! generics backed by [`heapless::Vec`], so a scene lives on the stack or in a `static`, and
+//! generics backed by `heapless::Vec`, so a scene lives on the stack or in a `static`, and
 //! exceeding a capacity is an error, not an allocation.
 //!
 //! # Ranges
@@ -16,7 +16,7 @@
 //!
 //! | quantity | accepted |
 //! |---|---|
-//! | coordinates (camera, centres, point lights) | `|v| ≤` [`MAX_COORDINATE`] per component |
+//! | coordinates (camera, centres, point lights) | `\|v\| ≤` [`MAX_COORDINATE`] per component |
 //! | radius | [`MIN_RADIUS`] `≤ r ≤` [`MAX_COORDINATE`] |
 //! | colours, albedo, `kd`, `ks` | `0 ≤ v ≤` [`MAX_VALUE`] |
 //! | light intensity | `0 ≤ i ≤` [`MAX_INTENSITY`] |
@@ -29,6 +29,14 @@
 use crate::pixel::LinearRgb;
 use crate::vec3::Vec3;
 use core::fmt;
+
+/// The default sphere capacity `S` of [`Scene`], [`Prepared`](crate::Prepared) and
+/// [`PreparedFixed`](crate::PreparedFixed): `Scene` alone is `Scene<16, 8>`, and so is every
+/// built-in scene ([`crate::presets`]), so a preset goes straight into `Prepared::<Simd8>::new`.
+pub const DEFAULT_SPHERES: usize = 16;
+/// The default light capacity `L` of [`Scene`], [`Prepared`](crate::Prepared) and
+/// [`PreparedFixed`](crate::PreparedFixed) (see [`DEFAULT_SPHERES`]).
+pub const DEFAULT_LIGHTS: usize = 8;
 
 /// Largest accepted magnitude of a coordinate component and of a radius, in scene units.
 pub const MAX_COORDINATE: f32 = 1.0e6;
@@ -70,11 +78,10 @@ pub struct Camera {
 ///
 /// For every model `kd`, `albedo`, `ks` and `shininess` keep their meaning: the diffuse
 /// weight and colour, and the weight and exponent of the first specular lobe.
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Model {
     /// Classic Phong: `ks·I·max(0, R·V)^n`, `R` the light's travel direction mirrored about `N`.
-    #[default]
     Phong,
     /// Classic Blinn-Phong: `ks·I·max(0, N·H)^n` with `H = normalize(L + V)`.
     BlinnPhong,
@@ -87,6 +94,13 @@ pub enum Model {
     /// normalization `c(n) = (n + 2)(n + 4) / (8π(2^(−n/2) + n))`, which makes the lobe's
     /// directional albedo 1 at normal view (see [`crate::brdf`]).
     NormalizedBlinnPhong(Specular),
+}
+
+impl Default for Model {
+    /// [`Model::Phong`], the lesson's classic model.
+    fn default() -> Self {
+        Model::Phong
+    }
 }
 
 impl Model {
@@ -121,7 +135,7 @@ impl Model {
 /// };
 /// assert!(gold.is_energy_conserving());
 /// ```
-#[derive(Clone, Copy, Debug, PartialEq, Default)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Specular {
     /// Dielectric (untinted highlight, optionally with Schlick Fresnel) or metal (tinted).
     pub surface: Surface,
@@ -152,8 +166,29 @@ impl Lobe {
 }
 
 impl Default for Lobe {
+    /// [`Lobe::NONE`]: weight 0, exponent 1 (no lobe).
     fn default() -> Self {
         Lobe::NONE
+    }
+}
+
+impl Default for Specular {
+    /// A dielectric without Fresnel (`Surface::Dielectric { ior: None }`: an untinted
+    /// highlight of constant weight) and no lobes besides lobe 0 (both `more_lobes` are
+    /// [`Lobe::NONE`]).
+    ///
+    /// ```
+    /// use shadeline::{Lobe, Specular, Surface};
+    /// let s = Specular::default();
+    /// assert_eq!(s.surface, Surface::Dielectric { ior: None });
+    /// assert_eq!(s.more_lobes, [Lobe::NONE; 2]);
+    /// assert_eq!(Surface::default(), s.surface);
+    /// ```
+    fn default() -> Self {
+        Specular {
+            surface: Surface::default(),
+            more_lobes: [Lobe::NONE; MORE_LOBES],
+        }
     }
 }
 
@@ -175,6 +210,8 @@ pub enum Surface {
 }
 
 impl Default for Surface {
+    /// `Surface::Dielectric { ior: None }`: an insulator without Fresnel, whose highlight is
+    /// untinted and of constant weight.
     fn default() -> Self {
         Surface::Dielectric { ior: None }
     }
@@ -268,16 +305,45 @@ pub enum Light {
         direction: Vec3,
         /// Linear RGB colour.
         color: LinearRgb,
-        /// Scalar intensity.
+        /// What arrives at every point, at any distance: `color·intensity` is the `I` of the
+        /// model.
         intensity: f32,
     },
     /// Light from a point, falling off with distance: arriving `color·intensity / (4π r²)`.
+    ///
+    /// `intensity` is a power, spread over the sphere of radius `r` around the light. To
+    /// light a surface at distance `d` as brightly as a [`Light::Distant`] of intensity `E`
+    /// does, choose
+    ///
+    /// ```text
+    /// intensity = 4π · d² · E
+    /// ```
+    ///
+    /// For example, `E = 5` (the exponent series' distant light) at `d = 10` scene units
+    /// takes `4π · 100 · 5 ≈ 6283`. The same light is 4 times brighter at half that distance
+    /// and 4 times dimmer at twice it. [`MAX_INTENSITY`] bounds it.
+    ///
+    /// ```
+    /// use shadeline::{Light, LinearRgb, Vec3};
+    /// let (e, d) = (5.0_f32, 10.0_f32);
+    /// let intensity = 4.0 * core::f32::consts::PI * d * d * e;
+    /// assert!((intensity - 6283.2).abs() < 0.1);
+    /// // What arrives at distance d is e again:
+    /// assert!((intensity / (4.0 * core::f32::consts::PI * d * d) - e).abs() < 1e-4);
+    /// let lamp = Light::Point {
+    ///     position: Vec3::new(0.0, d, 0.0), // d above a sphere at the origin
+    ///     color: LinearRgb::new(1.0, 1.0, 1.0),
+    ///     intensity,
+    /// };
+    /// # let _ = lamp;
+    /// ```
     Point {
         /// Where the light is.
         position: Vec3,
         /// Linear RGB colour.
         color: LinearRgb,
-        /// Scalar intensity (power).
+        /// Power: what arrives at distance `r` is `intensity / (4π r²)`, so for a wanted
+        /// brightness `E` at distance `d`, `intensity = 4π·d²·E` (see [`Light::Point`]).
         intensity: f32,
     },
 }
@@ -636,6 +702,11 @@ impl Light {
 
 /// A validated scene holding up to `S` spheres and `L` lights.
 ///
+/// Without capacities, `Scene` is `Scene<`[`DEFAULT_SPHERES`]`, `[`DEFAULT_LIGHTS`]`>`, the
+/// capacities of the built-in scenes and the defaults of the prepared frames. A scene of other
+/// capacities is prepared with them inferred: `Prepared::<Scalar, _, _>::new(&scene, w, h)`
+/// or `PreparedFixed::new(&scene, w, h)`. (`Prepared::<Scalar>` alone means the defaults.)
+///
 /// ```
 /// use shadeline::{Scene, Sphere, Material, Light, Camera, Vec3, LinearRgb};
 /// let camera = Camera {
@@ -655,7 +726,7 @@ impl Light {
 /// # Ok::<(), shadeline::SceneError>(())
 /// ```
 #[derive(Clone, Debug)]
-pub struct Scene<const S: usize = 16, const L: usize = 8> {
+pub struct Scene<const S: usize = DEFAULT_SPHERES, const L: usize = DEFAULT_LIGHTS> {
     camera: Camera,
     /// The camera's orthonormal `(right, up, forward)`, derived once when it is checked.
     basis: (Vec3, Vec3, Vec3),

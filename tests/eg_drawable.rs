@@ -1,7 +1,9 @@
 //! The embedded-graphics `Drawable` against a recording `DrawTarget`: every pixel equals
 //! `render_line`'s output (converted exactly), and the calls are the few large ones the
 //! module promises: one `fill_contiguous` per row the spheres touch, one `fill_solid` per
-//! pure background row, no `draw_iter`.
+//! pure background row, no `draw_iter`; and the `From` conversions between shadeline's
+//! formats and embedded-graphics' colours, which keep every level (and the `u16` of the
+//! 16-bit formats).
 //!
 //! Not behind `cfg(feature = "embedded-graphics")`: the crate's dev-dependency on itself turns
 //! the feature on for every test build, so `cargo test --workspace` runs these tests, and a
@@ -10,11 +12,13 @@
 mod common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{self, PixelColor};
+use embedded_graphics_core::pixelcolor::{GrayColor, IntoStorage, RgbColor};
 use embedded_graphics_core::prelude::*;
 use embedded_graphics_core::primitives::Rectangle;
 use shadeline::eg::{Drawing, EgColor};
 use shadeline::{
-    exponent_series, Encoding, Prepared, PreparedFixed, Render, Rgb888, Scalar, Simd4, Simd8,
+    exponent_series, materials, Bgr565, Encoding, Gray8, Prepared, PreparedFixed, Render, Rgb565,
+    Rgb888, Scalar, Simd4, Simd8,
 };
 
 /// A `DrawTarget` that records every pixel and counts its calls.
@@ -147,7 +151,11 @@ fn exponent_series_frame_is_drawn_exactly_with_few_calls() {
                 let a = draw_and_check::<pixelcolor::Rgb565, _>(&r, &label);
                 let b = draw_and_check::<pixelcolor::Rgb888, _>(&r, &label);
                 let c = draw_and_check::<pixelcolor::Gray8, _>(&r, &label);
-                assert!(a == b && b == c, "{label}: calls depend on the colour type");
+                let d = draw_and_check::<pixelcolor::Bgr565, _>(&r, &label);
+                assert!(
+                    a == b && b == c && c == d,
+                    "{label}: calls depend on the colour type"
+                );
                 // Covered rows get fill_contiguous; background rows fill_solid unless the
                 // dithered background varies.
                 assert_eq!(a.0 + a.1, h as usize);
@@ -200,4 +208,66 @@ fn random_scenes_small_sizes_and_an_offset() {
         target.pixels[7 * 40 + 3],
         Some(pixelcolor::Rgb888::from_pixel(line[13]))
     );
+}
+
+#[test]
+fn the_16_bit_formats_convert_both_ways_with_the_same_levels_and_bits() {
+    for bits in 0..=u16::MAX {
+        let p = Rgb565(bits);
+        let c = pixelcolor::Rgb565::from(p);
+        assert_eq!(c.into_storage(), bits);
+        assert_eq!(p.levels(), (c.r(), c.g(), c.b()));
+        assert_eq!(Rgb565::from(c), p);
+        assert_eq!(pixelcolor::Rgb565::from_pixel(p), c);
+
+        let p = Bgr565(bits);
+        let c = pixelcolor::Bgr565::from(p);
+        assert_eq!(c.into_storage(), bits);
+        assert_eq!(p.levels(), (c.r(), c.g(), c.b()));
+        assert_eq!(Bgr565::from(c), p);
+        assert_eq!(pixelcolor::Bgr565::from_pixel(p), c);
+    }
+    // Not the same colour type under another name: red is in the low bits of Bgr565.
+    assert_eq!(
+        pixelcolor::Bgr565::from(Bgr565::pack(31, 0, 0)),
+        pixelcolor::Bgr565::RED
+    );
+    assert_eq!(Bgr565::pack(31, 0, 0).0, 0x001f);
+    assert_eq!(Rgb565::from(pixelcolor::Rgb565::RED).0, 0xf800);
+}
+
+#[test]
+fn the_8_bit_formats_convert_both_ways_with_the_same_levels() {
+    for v in 0..=u8::MAX {
+        let w = v.wrapping_mul(37).wrapping_add(11);
+        let p = Rgb888 { r: v, g: w, b: !v };
+        let c = pixelcolor::Rgb888::from(p);
+        assert_eq!((c.r(), c.g(), c.b()), (v, w, !v));
+        assert_eq!(Rgb888::from(c), p);
+
+        let c = pixelcolor::Gray8::from(Gray8(v));
+        assert_eq!(c.luma(), v);
+        assert_eq!(Gray8::from(c), Gray8(v));
+    }
+}
+
+#[test]
+fn a_bgr565_target_gets_the_same_colours_as_an_rgb565_one() {
+    let scene = materials().unwrap();
+    let frame = Prepared::<Simd8>::new(&scene, 96, 54)
+        .unwrap()
+        .with_encoding(Encoding::SRGB.dithered());
+    let mut rgb = Recorder::<pixelcolor::Rgb565>::new(96, 54);
+    let mut bgr = Recorder::<pixelcolor::Bgr565>::new(96, 54);
+    Drawing::new(&frame).draw(&mut rgb).unwrap();
+    Drawing::new(&frame).draw(&mut bgr).unwrap();
+    let mut distinct = std::collections::HashSet::new();
+    for (a, b) in rgb.pixels.iter().zip(&bgr.pixels) {
+        let (a, b) = (a.unwrap(), b.unwrap());
+        assert_eq!((a.r(), a.g(), a.b()), (b.r(), b.g(), b.b()));
+        distinct.insert(a.into_storage());
+    }
+    // A frame of many colours, red and blue unequal in most: a swap would show.
+    assert!(distinct.len() > 100, "{}", distinct.len());
+    draw_and_check::<pixelcolor::Bgr565, _>(&frame, "materials Bgr565");
 }

@@ -8,7 +8,7 @@
 //! within-one-level share. PSNR is over all pixels.
 
 use crate::image::RgbImage;
-use crate::rows::render_rows;
+use crate::rows::{render_rows, FrameError};
 use crate::scene_file::FileScene;
 use shadeline::reference::{quantize, shade_pixel, RefPixel};
 use shadeline::{HitRecord, RenderError, Rgb888, MAX_DIMENSION};
@@ -17,6 +17,20 @@ use std::fmt::Write as _;
 /// Difference images are `|path − reference|` per channel times this, clamped to 255.
 pub const DIFF_GAIN: u32 = 32;
 
+/// The bytes per pixel that `compare` holds at once with `paths` paths: the reference (colour
+/// and hit record) and its 8-bit quantization, each path's 8-bit frame and one path's hit
+/// records, and the picture (the reference and each path over their differences, with one
+/// difference being built).
+pub fn bytes_per_pixel(paths: usize) -> usize {
+    let rgb = std::mem::size_of::<Rgb888>();
+    std::mem::size_of::<RefPixel>()
+        + rgb
+        + paths * rgb
+        + std::mem::size_of::<HitRecord>()
+        + 2 * (paths + 1) * rgb
+        + rgb
+}
+
 /// Renders the reference frame on `threads` threads (the same frame as
 /// [`shadeline::reference::render_frame`], one row block per thread at a time).
 pub fn render_reference(
@@ -24,9 +38,9 @@ pub fn render_reference(
     width: u32,
     height: u32,
     threads: usize,
-) -> Result<Vec<RefPixel>, RenderError> {
+) -> Result<Vec<RefPixel>, FrameError> {
     if width > MAX_DIMENSION || height > MAX_DIMENSION {
-        return Err(RenderError::BadSize { width, height });
+        return Err(RenderError::BadSize { width, height }.into());
     }
     render_rows(width, height, threads, |y, row: &mut [RefPixel]| {
         for (x, px) in row.iter_mut().enumerate() {

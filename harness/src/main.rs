@@ -8,18 +8,24 @@
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
 //! ```
 //!
+//! `render` uses the widest SIMD path unless `--path` names another (its frames are
+//! bit-identical to `scalar`'s); `compare` runs every path.
+//!
 //! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
 //! 768×432). Without a scene file or preset both use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file, size or path is reported as
-//! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2; a failure to write the
-//! output is exit code 1.
+//! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2, and so is a frame too
+//! large for the memory (the message names its size; buffers are allocated fallibly). The
+//! output file is opened before rendering: an output that cannot be written is exit code 1,
+//! before the render rather than after it.
 
 use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
+use shadeline::MAX_DIMENSION;
 use shadeline_harness::compare::{self, Row};
-use shadeline_harness::image::RgbImage;
+use shadeline_harness::image::PngFile;
 use shadeline_harness::paths::{self, Path, PATHS};
-use shadeline_harness::rows::default_threads;
+use shadeline_harness::rows::{check_memory, default_threads, new_frame, FrameError};
 use shadeline_harness::scene_file::{
     builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
 };
@@ -41,15 +47,16 @@ enum Command {
     Render {
         #[command(flatten)]
         input: Input,
-        /// The path: `scalar` (the float reference of the crate, the default), `simd4`,
-        /// `simd8`, `simd` for the widest, or `fixed` (integers only per pixel).
-        #[arg(long, default_value = "scalar", value_parser = PossibleValuesParser::new(paths::names()))]
+        /// The path: `simd` for the widest SIMD path (the default: it gives the same bits as
+        /// `scalar`, faster), `simd4`, `simd8`, `scalar` (the float reference of the crate),
+        /// or `fixed` (integers only per pixel).
+        #[arg(long, default_value = paths::SIMD_ALIAS.0, value_parser = PossibleValuesParser::new(paths::names()))]
         path: String,
         /// Where to write the PNG.
         #[arg(short, long, default_value = "spheres.png")]
         output: PathBuf,
         /// Timed frames after one untimed warm-up frame; the median and best are reported.
-        #[arg(long, default_value_t = 5, value_parser = clap::value_parser!(u16).range(1..))]
+        #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
         repeat: u16,
     },
     /// Compare every path with the f64 reference: a table, and a picture of the differences.
@@ -69,17 +76,26 @@ struct Input {
     scene: Option<PathBuf>,
     /// A built-in scene instead of a file: `exponent-series` or `materials` (the gallery of
     /// reflection models).
-    #[arg(long, conflicts_with = "scene", value_parser = PossibleValuesParser::new(PRESETS))]
+    #[arg(long, value_parser = PossibleValuesParser::new(PRESETS))]
     preset: Option<String>,
     /// Image width in pixels, instead of the scene file's.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     width: Option<u32>,
     /// Image height in pixels, instead of the scene file's.
-    #[arg(long)]
+    #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     height: Option<u32>,
     /// Threads to render rows on [default: the available parallelism].
-    #[arg(long, value_parser = clap::value_parser!(u16).range(1..))]
+    #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
     threads: Option<u16>,
+}
+
+/// `--width`/`--height`: a whole number of pixels. Negative numbers reach this parser as
+/// values (rather than as unknown options), so `-5` is refused as a size; 0 and sizes above
+/// the largest are refused by the size check, which names the limit.
+fn pixels(value: &str) -> Result<u32, String> {
+    value
+        .parse()
+        .map_err(|_| format!("a size is a whole number of pixels, from 1 to {MAX_DIMENSION}"))
 }
 
 /// A failure: the message (already naming the file or option) and the exit code.
@@ -97,6 +113,22 @@ impl Failure {
     fn output(message: String) -> Self {
         Failure { message, code: 1 }
     }
+
+    /// A frame that could not be rendered: a refusal of the renderer, or a frame too large
+    /// for the memory (exit code 2, naming the size).
+    fn frame(e: FrameError) -> Self {
+        Failure::input(format!("error: {e}"))
+    }
+}
+
+/// Opens the output before any rendering, so an unwritable path fails at once (exit code 1).
+fn open_output(output: &std::path::Path) -> Result<PngFile, Failure> {
+    PngFile::open(output).map_err(write_failed(output))
+}
+
+/// The output could not be written (exit code 1).
+fn write_failed(output: &std::path::Path) -> impl FnOnce(std::io::Error) -> Failure + '_ {
+    move |e| Failure::output(format!("{}: error: cannot write: {e}", output.display()))
 }
 
 fn main() -> ExitCode {
@@ -128,7 +160,14 @@ impl Input {
     fn load(&self) -> Result<SceneFile, Failure> {
         let failed = |e: shadeline::SceneError| Failure::input(format!("error: {e}"));
         let mut file = match (&self.scene, &self.preset) {
-            (Some(path), _) => read_scene(path)?,
+            (Some(path), Some(name)) => {
+                return Err(Failure::input(format!(
+                    "error: both a scene file ({}) and --preset {name} were given: give one \
+                     or the other",
+                    path.display()
+                )))
+            }
+            (Some(path), None) => read_scene(path)?,
             (None, Some(name)) => preset(name)
                 .ok_or_else(|| Failure::input(format!("error: unknown preset `{name}`")))?
                 .map_err(failed)?,
@@ -171,9 +210,12 @@ fn render(
         .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
     let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
     let frame = (path.prepare)(&file.scene, file.width, file.height).map_err(failed)?;
+    let png = open_output(output)?;
+    let mut rgb =
+        new_frame(file.width, file.height).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
     // One untimed frame first: it faults the buffer's pages in and warms the caches, so the
     // timed frames measure shading, not the operating system.
-    let mut rgb = frame.render_rgb(threads).map_err(failed)?;
+    frame.render_rgb_into(&mut rgb, threads).map_err(failed)?;
     let mut times = Vec::with_capacity(repeat);
     for _ in 0..repeat {
         let start = Instant::now();
@@ -183,9 +225,8 @@ fn render(
     times.sort_by(f64::total_cmp);
     let median = times[times.len() / 2];
     let best = times[0];
-    RgbImage::from_pixels(file.width, file.height, &rgb)
-        .write_png(output)
-        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
+    png.write_pixels(file.width, file.height, &rgb)
+        .map_err(write_failed(output))?;
     let megapixels = f64::from(file.width) * f64::from(file.height) / 1e6;
     println!(
         "{}x{} {} on {} thread{}: {:.2} ms per frame (median of {}, best {:.2} ms), {:.1} Mpix/s -> {}",
@@ -210,8 +251,12 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     let file = input.load()?;
     let threads = input.threads();
     let (scene, w, h) = (&file.scene, file.width, file.height);
-    let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
-    let reference = compare::render_reference(scene, w, h, threads).map_err(failed)?;
+    let failed = |e: shadeline::RenderError| Failure::frame(e.into());
+    let png = open_output(output)?;
+    // Every buffer compare holds at once, checked before the first frame is rendered.
+    check_memory(w, h, compare::bytes_per_pixel(PATHS.len()))
+        .map_err(|e| Failure::frame(e.into()))?;
+    let reference = compare::render_reference(scene, w, h, threads).map_err(Failure::frame)?;
     let ref_rgb = compare::reference_rgb(&reference);
     let mut rows = Vec::new();
     let mut images = Vec::new();
@@ -221,14 +266,16 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         for _ in 0..RUNS {
             let start = Instant::now();
             rgb = (path.prepare)(scene, w, h)
-                .and_then(|frame| frame.render_rgb(threads))
-                .map_err(failed)?;
+                .map_err(failed)?
+                .render_rgb(threads)
+                .map_err(Failure::frame)?;
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }
         times.sort_by(f64::total_cmp);
         let hits = (path.prepare)(scene, w, h)
-            .and_then(|frame| frame.render_hits(threads))
-            .map_err(failed)?;
+            .map_err(failed)?
+            .render_hits(threads)
+            .map_err(Failure::frame)?;
         rows.push(Row {
             name: path.name,
             stats: compare::stats(&reference, &ref_rgb, &rgb, &hits),
@@ -241,9 +288,8 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         if threads == 1 { "" } else { "s" }
     );
     print!("{}", compare::table(&rows));
-    compare::picture(w, h, &ref_rgb, &images)
-        .write_png(output)
-        .map_err(|e| Failure::output(format!("{}: error: cannot write: {e}", output.display())))?;
+    png.write_image(&compare::picture(w, h, &ref_rgb, &images))
+        .map_err(write_failed(output))?;
     println!(
         "wrote {} (top: reference | {}; below each path: |path - reference| x {})",
         output.display(),

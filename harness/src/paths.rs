@@ -4,7 +4,7 @@
 //! `new(&scene, width, height) -> Result<Self, RenderError>` that implements
 //! [`shadeline::Render`]; adding one (the fixed-point path, say) is one line in [`PATHS`].
 
-use crate::rows::{render_rows, render_rows_into};
+use crate::rows::{render_rows, render_rows_into, FrameError};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
 use shadeline::{
     HitRecord, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar, Simd4, Simd8,
@@ -15,16 +15,16 @@ use shadeline::{
 /// [`Render`] has generic methods and so cannot be a trait object; this is the part of it the
 /// harness needs, for the two pixel formats it uses.
 pub trait Frame: Sync {
-    /// The frame as 8-bit RGB.
-    fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, RenderError>;
+    /// The frame as 8-bit RGB, in a new buffer (allocated fallibly).
+    fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, FrameError>;
     /// The frame as 8-bit RGB into an existing buffer of width × height pixels.
     fn render_rgb_into(&self, frame: &mut [Rgb888], threads: usize) -> Result<(), RenderError>;
     /// The frame's hit records: which sphere each pixel shows and which lights are blocked.
-    fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, RenderError>;
+    fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, FrameError>;
 }
 
 impl<R: Render + Sync> Frame for R {
-    fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, RenderError> {
+    fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, FrameError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
             self.render_line(y, row)
         })
@@ -41,7 +41,7 @@ impl<R: Render + Sync> Frame for R {
             self.render_line(y, row)
         })
     }
-    fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, RenderError> {
+    fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, FrameError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
             self.render_line(y, row)
         })
@@ -76,7 +76,7 @@ fn boxed<R: Render + Sync + 'static>(
 const S: usize = MAX_SPHERES;
 const L: usize = MAX_LIGHTS;
 
-/// Every path, narrowest first. The first is the default of `render`.
+/// Every path, narrowest first. `render`'s default is [`SIMD_ALIAS`], the widest SIMD path.
 pub const PATHS: &[Path] = &[
     path("scalar", |s, w, h| {
         boxed(Prepared::<Scalar, S, L>::new(s, w, h))
@@ -97,7 +97,7 @@ const fn path(name: &'static str, prepare: Prepare) -> Path {
     Path { name, prepare }
 }
 
-/// The alias for the widest SIMD path.
+/// The alias for the widest SIMD path, and `render`'s default path.
 pub const SIMD_ALIAS: (&str, &str) = ("simd", "simd8");
 
 /// The path called `name` (or the alias `simd`).

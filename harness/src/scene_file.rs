@@ -80,11 +80,14 @@ impl SceneFileError {
 }
 
 impl fmt::Display for SceneFileError {
-    /// `LINE:COL: error: MESSAGE (key `KEY`)`; the caller puts the file name in front.
+    /// `LINE:COL: error: MESSAGE (key `KEY`)`, without the key when the message already names
+    /// it as `` `KEY` ``; the caller puts the file name in front.
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}:{}: error: {}", self.line, self.column, self.message)?;
         if let Some(key) = &self.key {
-            write!(f, " (key `{key}`)")?;
+            if !self.message.contains(&format!("`{key}`")) {
+                write!(f, " (key `{key}`)")?;
+            }
         }
         Ok(())
     }

@@ -114,6 +114,137 @@ fn a_bad_size_on_the_command_line_is_refused() {
     );
 }
 
+/// Runs the binary with its address space limited to 1 GiB (`ulimit -v`), so that a frame
+/// larger than that cannot be allocated on any machine, however much memory it has.
+#[cfg(unix)]
+fn shadeline_in_1_gib(args: &[&str], dir: &Path) -> Output {
+    Command::new("sh")
+        .arg("-c")
+        .arg("ulimit -v 1048576 && exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_shadeline"))
+        .args(args)
+        .current_dir(dir)
+        .output()
+        .expect("sh runs")
+}
+
+#[cfg(unix)]
+#[test]
+fn a_frame_too_large_for_the_memory_is_refused_with_its_size_not_an_abort() {
+    let dir = temp_dir("huge");
+    let huge = ["--width", "65535", "--height", "65535"];
+    for command in ["render", "compare"] {
+        let args: Vec<&str> = [command].iter().chain(&huge).copied().collect();
+        let out = shadeline_in_1_gib(&args, &dir);
+        assert_refused(
+            &out,
+            &["error:", "65535x65535 frame", "cannot allocate", "GB"],
+        );
+    }
+    // Nothing is left behind, and an existing output keeps its contents.
+    assert!(!dir.join("spheres.png").exists());
+    assert!(!dir.join("compare.png").exists());
+    std::fs::write(dir.join("old.png"), "old").unwrap();
+    let args = [
+        "render", "--width", "65535", "--height", "65535", "-o", "old.png",
+    ];
+    assert_refused(&shadeline_in_1_gib(&args, &dir), &["65535x65535 frame"]);
+    assert_eq!(std::fs::read_to_string(dir.join("old.png")).unwrap(), "old");
+}
+
+#[cfg(unix)]
+#[test]
+fn an_unwritable_output_is_refused_before_rendering() {
+    let dir = temp_dir("unwritable");
+    // With a frame that cannot be allocated: the output is checked first, so the message
+    // is about the output.
+    for command in ["render", "compare"] {
+        let out = shadeline_in_1_gib(
+            &[
+                command,
+                "--width",
+                "65535",
+                "--height",
+                "65535",
+                "-o",
+                "no-dir/out.png",
+            ],
+            &dir,
+        );
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(1), "{err}");
+        assert!(
+            err.starts_with("no-dir/out.png: error: cannot write:"),
+            "{err}"
+        );
+    }
+    // A directory is not a file to write.
+    let out = shadeline(
+        &["render", "--width", "8", "--height", "6", "-o", "."],
+        &dir,
+    );
+    assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
+    assert!(
+        stderr(&out).contains(".: error: cannot write:"),
+        "{}",
+        stderr(&out)
+    );
+}
+
+#[test]
+fn a_negative_number_is_refused_as_a_value_not_taken_for_an_option() {
+    let dir = temp_dir("negative");
+    for (option, words) in [
+        (
+            "--width",
+            "a size is a whole number of pixels, from 1 to 65535",
+        ),
+        (
+            "--height",
+            "a size is a whole number of pixels, from 1 to 65535",
+        ),
+        ("--threads", "-5 is not in 1..=65535"),
+        ("--repeat", "-5 is not in 1..=65535"),
+    ] {
+        let out = shadeline(&["render", option, "-5"], &dir);
+        let err = stderr(&out);
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert!(
+            err.contains(&format!("invalid value '-5' for '{option}")),
+            "{err}"
+        );
+        assert!(err.contains(words), "{err}");
+        assert!(!err.contains("-- -5"), "{err}");
+    }
+    assert!(!dir.join("spheres.png").exists());
+}
+
+#[test]
+fn a_scene_file_and_a_preset_together_are_one_accurate_message() {
+    let dir = temp_dir("file-and-preset");
+    std::fs::write(dir.join("scene.toml"), exponent_series_text()).unwrap();
+    for args in [
+        ["render", "scene.toml", "--preset", "materials"],
+        ["compare", "--preset", "materials", "scene.toml"],
+    ] {
+        let out = shadeline(&args, &dir);
+        assert_refused(
+            &out,
+            &["error: both a scene file (scene.toml) and --preset materials were given"],
+        );
+        assert!(!stderr(&out).contains("Usage"), "{}", stderr(&out));
+    }
+}
+
+#[test]
+fn an_empty_scene_file_names_the_missing_table_once() {
+    let dir = temp_dir("empty");
+    std::fs::write(dir.join("empty.toml"), "").unwrap();
+    let out = shadeline(&["render", "empty.toml"], &dir);
+    assert_refused(&out, &["empty.toml:1:1: error: missing key `image`"]);
+    assert_eq!(stderr(&out).matches("image").count(), 1, "{}", stderr(&out));
+}
+
 #[test]
 fn render_writes_an_rgb_png_of_the_asked_size() {
     let dir = temp_dir("render-size");
@@ -135,6 +266,32 @@ fn render_writes_an_rgb_png_of_the_asked_size() {
     // The background (top-left) and the middle sphere row differ.
     let at = |x: usize, y: usize| &pixels[(y * 64 + x) * 3..][..3];
     assert_ne!(at(0, 0), at(32, 24));
+}
+
+#[test]
+fn render_uses_the_widest_simd_path_unless_told_otherwise() {
+    let dir = temp_dir("default-path");
+    let size = ["--width", "40", "--height", "30"];
+    let run = |extra: &[&str]| {
+        let args: Vec<&str> = ["render"]
+            .iter()
+            .chain(&size)
+            .chain(extra)
+            .copied()
+            .collect();
+        let out = shadeline(&args, &dir);
+        assert!(out.status.success(), "{}", stderr(&out));
+        String::from_utf8_lossy(&out.stdout).into_owned()
+    };
+    let default = run(&["-o", "default.png"]);
+    assert!(default.starts_with("40x30 simd8 "), "{default}");
+    let scalar = run(&["--path", "scalar", "-o", "scalar.png"]);
+    assert!(scalar.starts_with("40x30 scalar "), "{scalar}");
+    // The same bits either way.
+    assert_eq!(
+        read_png(&dir.join("default.png")).4,
+        read_png(&dir.join("scalar.png")).4
+    );
 }
 
 #[test]
