@@ -58,7 +58,7 @@ const SERIES_LIMIT: u64 = 1 << 56;
 /// `1.0` in U1F31.
 const ONE_F31: u64 = 1 << 31;
 /// `1/ln 2` in U1F31.
-const INV_LN2_F31: u64 = 3_098_164_009;
+pub(super) const INV_LN2_F31: u64 = 3_098_164_009;
 /// `ln 2` in U0F32.
 const LN2_F32: u64 = 2_977_044_472;
 /// `1/k` in U1F31.
@@ -185,9 +185,9 @@ fn exp2_neg(y: u32) -> u32 {
 }
 
 /// `(round(2³¹/m₀), log2(m₀) in U0F32)` for `m₀ = 1 + i/64`.
-static LOG_TABLE: [(u32, u32); 64] = log_table();
+pub(super) static LOG_TABLE: [(u32, u32); 64] = log_table();
 /// `round(2³¹·2^(−i/64))`.
-static EXP_TABLE: [u32; 64] = exp_table();
+pub(super) static EXP_TABLE: [u32; 64] = exp_table();
 
 const fn log_table() -> [(u32, u32); 64] {
     let mut table = [(0u32, 0u32); 64];

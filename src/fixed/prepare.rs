@@ -417,8 +417,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 0
             } else {
                 let h = 1.0 - libm::powf(tau / ks_intensity, 1.0 / n);
-                let h = (h + 2.5 * DELTA).min(3.99);
-                (h * (1u64 << 61) as f32) as u64
+                // Saturates at 2: above 1 the lobe is 0 anyway.
+                ((h + 2.5 * DELTA) * (1u64 << 31) as f32) as u32
             };
             let lobe_error = ks_intensity * 255.0 * libm::sqrtf(n) * DELTA * 0.61;
             s.narrow = Some(NarrowSphere {
@@ -431,7 +431,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
                     as u32,
                 cutoff,
-                lobe_everywhere: lobe_error <= 0.5,
+                lobe_everywhere: lobe_error <= 0.5 && n <= 256.0,
             });
         }
         self.narrow = Some(view);
