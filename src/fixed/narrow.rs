@@ -634,8 +634,8 @@ fn narrow_lobe(h: u32, n: Exact) -> u32 {
         let delta = ((((m & ((1 << 25) - 1)) >> 9) * (inv_m0 >> 15)) >> 7) as i32;
         let d10 = delta >> 10; // Q21, |d10| < 2¹⁵
         let d2 = (d10 * d10) >> 11; // δ² in Q31
-        let d3 = (((d2 >> 9) * d10) >> 12) / 3; // δ³/3 in Q31
-        let ln = delta - d2 / 2 + d3; // ln(1 + δ), Q31
+        let d3 = ((((d2 >> 9) * d10) >> 12) * 21_845) >> 16; // δ³/3 in Q31 (|δ³| < 2¹³)
+        let ln = delta - (d2 >> 1) + d3; // ln(1 + δ), Q31
         let log2_1p = ((ln >> 9) * ((INV_LN2_F31 >> 17) as i32)) >> 9; // Q27
         let log2_m = (log2_m0 >> 5) as i64 + log2_1p as i64; // Q27, in [0, 1)
         (((e as i64) << 27) - log2_m).clamp(0, u32::MAX as i64) as u32
