@@ -810,6 +810,108 @@ mod tests {
         assert!(worst.0 < 2e-4, "{worst:?}");
     }
 
+    /// Random frames the narrow kernel takes (one to three distant lights, up to six
+    /// Phong and Blinn-Phong spheres that may overlap and shadow each other) against the
+    /// `f64` reference: the fixed path's budget, and most frames must use the kernel.
+    #[test]
+    fn random_narrow_frames_within_budget() {
+        use crate::reference::{self, RefPixel};
+        use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
+        use crate::vec3::Vec3;
+        use crate::{HitRecord, LinearRgb, Render, Rgb888};
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |lo: f32, hi: f32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        };
+        let (w, h) = (160u32, 120u32);
+        let (mut narrow_frames, mut worst, mut differ) = (0, 0u16, 0usize);
+        let (mut pixels, mut within_one) = (0usize, 0usize);
+        for _ in 0..24 {
+            let angle = next(-3.1, 3.1);
+            let camera = Camera {
+                position: Vec3::new(9.0 * angle.sin(), next(-3.0, 3.0), 9.0 * angle.cos()),
+                look_at: Vec3::new(0.0, 0.0, 0.0),
+                up: Vec3::new(0.0, 1.0, 0.0),
+                vfov_degrees: next(25.0, 60.0),
+            };
+            let mut scene: Scene<8, 4> =
+                Scene::new(camera, LinearRgb::new(next(0.0, 0.3), 0.1, 0.2)).unwrap();
+            for _ in 0..(next(1.0, 6.99) as usize) {
+                let model = if next(0.0, 1.0) < 0.5 {
+                    Model::Phong
+                } else {
+                    Model::BlinnPhong
+                };
+                scene
+                    .add_sphere(Sphere {
+                        center: Vec3::new(next(-3.0, 3.0), next(-2.0, 2.0), next(-3.0, 3.0)),
+                        radius: next(0.3, 1.5),
+                        material: Material {
+                            albedo: LinearRgb::new(next(0.0, 1.0), next(0.0, 1.0), next(0.0, 1.0)),
+                            kd: next(0.2, 0.9),
+                            ks: next(0.0, 0.6),
+                            shininess: libm::powf(2.0, next(0.0, 11.0)),
+                            model,
+                        },
+                    })
+                    .unwrap();
+            }
+            for _ in 0..(next(1.0, 3.99) as usize) {
+                scene
+                    .add_light(Light::Distant {
+                        direction: Vec3::new(next(-1.0, 1.0), next(-1.0, 0.2), next(-1.0, 1.0)),
+                        color: LinearRgb::new(1.0, next(0.7, 1.0), next(0.7, 1.0)),
+                        intensity: next(0.5, 2.0),
+                    })
+                    .unwrap();
+            }
+            let Ok(frame) = PreparedFixed::new(&scene, w, h) else {
+                continue;
+            };
+            narrow_frames += frame.narrow.is_some() as usize;
+            let mut want = std::vec![RefPixel::default(); (w * h) as usize];
+            reference::render_frame(&scene, w, h, &mut want).unwrap();
+            let mut colors = std::vec![Rgb888::default(); (w * h) as usize];
+            let mut hits = std::vec![HitRecord::default(); (w * h) as usize];
+            frame.render_frame(&mut colors).unwrap();
+            frame.render_frame(&mut hits).unwrap();
+            let mut frame_differ = 0;
+            for ((c, hit), want) in colors.iter().zip(&hits).zip(&want) {
+                pixels += 1;
+                if *hit != want.hit {
+                    frame_differ += 1;
+                    continue;
+                }
+                let levels = [c.r, c.g, c.b]
+                    .iter()
+                    .zip(want.color)
+                    .map(|(&g, v)| (g as i32 - reference::quantize(v, 255.0) as i32).unsigned_abs())
+                    .max()
+                    .unwrap_or(0) as u16;
+                worst = worst.max(levels);
+                within_one += (levels <= 1) as usize;
+            }
+            assert!(
+                frame_differ * 1000 <= (w * h) as usize,
+                "{frame_differ} decisions differ"
+            );
+            differ += frame_differ;
+        }
+        std::println!(
+            "{narrow_frames} of 24 frames narrow; max {worst} levels, {:.3}% within 1, {differ} decisions differ",
+            100.0 * within_one as f64 / (pixels - differ) as f64
+        );
+        assert!(
+            narrow_frames >= 10,
+            "only {narrow_frames} frames use the narrow kernel"
+        );
+        assert!(worst <= 2, "{worst} levels");
+        assert!(within_one as f64 >= 0.99 * (pixels - differ) as f64);
+    }
+
     #[test]
     fn scale_q15_is_exact() {
         for a in [0u32, 1, 65535, 65536, 1 << 20, u32::MAX / 3] {
