@@ -82,7 +82,7 @@
 //! normal, two table-and-Newton inverse square roots, and the full-width kernel below only
 //! for the pixels whose lobe needs its precision (the bright part of a narrow highlight). On
 //! the exponent series at 320×240 (`.ci/firmware`) that takes the Cortex-M0 from 54.0 M to
-//! 18.2 M instructions per frame, the Cortex-M4F from 22.1 M to 12.6 M and the RV32IMAC from
+//! 18.3 M instructions per frame, the Cortex-M4F from 22.1 M to 12.6 M and the RV32IMAC from
 //! 24.9 M to 12.5 M, with the same bits on all three, for 13.5 KB more of the M0's flash.
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see

@@ -34,10 +34,18 @@ pub(crate) fn leading_zeros(x: u64) -> u32 {
 #[inline(always)]
 fn search_leading_zeros(x: u64) -> u32 {
     let high = (x >> 32) as u32;
-    let (mut v, mut n) = if high != 0 { (high, 0) } else { (x as u32, 32) };
+    let (v, n) = if high != 0 { (high, 0) } else { (x as u32, 32) };
     if v == 0 {
         return 64;
     }
+    n + search_leading_zeros32(v)
+}
+
+/// The leading zeros of a nonzero `u32` by a five-step binary search (ARMv6-M has no `CLZ`).
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
+    let (mut v, mut n) = (x, 0);
     if v >> 16 == 0 {
         n += 16;
         v <<= 16;

@@ -223,28 +223,12 @@ fn sqrt_q30(x: u32) -> i32 {
 
 /// The number of leading zeros of `x > 0`, rounded down to even: the shift that brings `x`
 /// into `[2³⁰, 2³²)` by a power of four. `CLZ` where the core has it; on ARMv6-M, which
-/// has not, four steps of a binary search inline.
+/// has not, the binary search of [`super::mul`].
 #[inline(always)]
 fn even_leading_zeros(x: u32) -> u32 {
     #[cfg(shadeline_short_mul)]
     {
-        let (mut n, mut v) = (0, x);
-        if v >> 16 == 0 {
-            n += 16;
-            v <<= 16;
-        }
-        if v >> 24 == 0 {
-            n += 8;
-            v <<= 8;
-        }
-        if v >> 28 == 0 {
-            n += 4;
-            v <<= 4;
-        }
-        if v >> 30 == 0 {
-            n += 2;
-        }
-        n
+        super::mul::search_leading_zeros32(x) & !1
     }
     #[cfg(not(shadeline_short_mul))]
     {
