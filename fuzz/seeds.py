@@ -38,8 +38,43 @@ def v3(x, y, z):
     return b"".join(num(n) for n in (x, y, z))
 
 
-def sphere(center, radius, albedo=(0.18, 0.18, 0.18), kd=0.8, ks=0.2, n=50.0, blinn=False):
-    return b"\x01" + v3(*center) + num(radius) + v3(*albedo) + num(kd) + num(ks) + num(n) + bytes([blinn])
+MODELS = 5  # Phong, BlinnPhong, Lambert, NormalizedPhong, NormalizedBlinnPhong
+SURFACES = 3  # Dielectric, Fresnel(ior), Metal(index)
+PHONG = variant(0, MODELS)
+BLINN_PHONG = variant(1, MODELS)
+LAMBERT = variant(2, MODELS)
+
+
+def lobe(weight=0.0, n=1.0):
+    return num(weight) + num(n)
+
+
+def dielectric():
+    return variant(0, SURFACES)
+
+
+def fresnel(ior):
+    return variant(1, SURFACES) + num(ior)
+
+
+def metal(index):
+    """0 gold, 1 copper, 2 bronze."""
+    return variant(2, SURFACES) + bytes([index])
+
+
+def normalized(surface, lobes=(), blinn=False):
+    """A normalized model (`ModelIn::NormalizedPhong` or `NormalizedBlinnPhong`) with lobes 1
+    and 2 (`lobes` as (weight, n) pairs; missing ones have weight 0)."""
+    more = list(lobes) + [(0.0, 1.0)] * (2 - len(lobes))
+    return variant(4 if blinn else 3, MODELS) + surface + b"".join(lobe(w, n) for w, n in more)
+
+
+def sphere(center, radius, albedo=(0.18, 0.18, 0.18), kd=0.8, ks=0.2, n=50.0, blinn=False, model=None):
+    """`model`: encoded bytes of a model (PHONG, LAMBERT, normalized(...), ...); by default
+    classic Phong, or classic Blinn-Phong if `blinn`."""
+    if model is None:
+        model = BLINN_PHONG if blinn else PHONG
+    return b"\x01" + v3(*center) + num(radius) + v3(*albedo) + num(kd) + num(ks) + num(n) + model
 
 
 def distant(direction, color=(1.0, 1.0, 1.0), intensity=2.0):
@@ -50,14 +85,20 @@ def point(position, color=(1.0, 1.0, 1.0), intensity=50.0):
     return b"\x01" + variant(1, 2) + v3(*position) + v3(*color) + num(intensity)
 
 
-def scene(camera, spheres, lights, width, height, rows=(0, 0), background=(0.1, 0.2, 0.3)):
-    """`width` is the image width (1..=67), encoded as `width - 1`."""
+LINEAR, LINEAR_DITHERED, SRGB, SRGB_DITHERED = range(4)
+
+
+def scene(camera, spheres, lights, width, height, rows=(0, 0), background=(0.1, 0.2, 0.3),
+          encoding=LINEAR):
+    """`width` is the image width (1..=67), encoded as `width - 1`; `encoding` indexes
+    `ENCODINGS` (linear, linear dithered, sRGB, sRGB dithered)."""
     position, look_at, up, vfov = camera
     out = v3(*position) + v3(*look_at) + v3(*up) + num(vfov)
     out += v3(*background)
     out += b"".join(spheres) + b"\x00"
     out += b"".join(lights) + b"\x00"
     out += bytes([width - 1]) + struct.pack("<H", height) + struct.pack("<HH", *rows)
+    out += bytes([encoding])
     return out
 
 
@@ -108,6 +149,41 @@ SEEDS = {
     "extreme-fov": scene(
         ((0.0, 0.0, 5.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), special(19)), [UNIT], [distant((0.0, -1.0, -1.0))],
         65, 65, rows=(32, 31)),
+    # Every model in one row, under a point light and a distant light, sRGB dithered.
+    "every-model": scene(
+        ((0.0, 0.0, 9.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 40.0),
+        [sphere((-3.0, 0.0, 0.0), 0.9, albedo=(0.8, 0.3, 0.2), kd=0.9, model=LAMBERT),
+         sphere((-1.0, 0.0, 0.0), 0.9, kd=0.6, ks=0.4, n=200.0,
+                model=normalized(fresnel(1.5), [(0.2, 20.0)])),
+         sphere((1.0, 0.0, 0.0), 0.9, kd=0.0, ks=0.6, n=400.0,
+                model=normalized(metal(0), [(0.3, 40.0)], blinn=True)),
+         sphere((3.0, 0.0, 0.0), 0.9, kd=0.3, ks=0.4, n=1000.0,
+                model=normalized(dielectric(), [(0.2, 100.0), (0.1, 1.0)], blinn=True))],
+        [point((0.0, 4.0, 6.0), intensity=300.0), distant((-1.0, -1.0, -1.0))],
+        67, 31, rows=(15, 12), encoding=SRGB_DITHERED),
+    # Metals: copper and bronze, normalized Phong, linear dithered into every format.
+    "metals": scene(
+        FRONT,
+        [sphere((-0.6, 0.0, 0.0), 0.5, ks=1.0, n=80.0, model=normalized(metal(1))),
+         sphere((0.6, 0.0, 0.0), 0.5, ks=0.5, n=8.0, model=normalized(metal(2), [(0.5, 300.0)]))],
+        [distant((0.0, -0.3, -1.0))], 41, 21, rows=(10, 9), encoding=LINEAR_DITHERED),
+    # Options at the edges of validation: ior just above 1, the largest ior, a lobe with the
+    # largest exponent, a lobe weight of 0 with any exponent; sRGB.
+    "edge-options": scene(
+        FRONT,
+        [sphere((0.0, 0.0, 0.0), 1.0, ks=1.0, n=1e6,
+                model=normalized(fresnel(1.0000001), [(1e6, 1e6), (0.0, 1.0)])),
+         sphere((1.0, 1.0, -1.0), 0.5, n=0.001, model=normalized(fresnel(1e6), [(1.0, 0.001)], blinn=True))],
+        [distant((0.0, 0.0, -1.0))], 9, 9, rows=(4, 4), encoding=SRGB),
+    # Refused options: NaN ior, ior 1, a negative lobe weight, NaN lobe exponent.
+    "bad-options": scene(
+        FRONT,
+        [sphere((0.0, 0.0, 0.0), 1.0, model=normalized(fresnel(special(0)))),
+         sphere((0.0, 0.0, 0.0), 1.0, model=normalized(fresnel(1.0))),
+         sphere((0.0, 0.0, 0.0), 1.0, model=normalized(dielectric(), [(-0.5, 10.0)])),
+         sphere((0.0, 0.0, 0.0), 1.0, model=normalized(metal(2), [(0.5, special(0))], blinn=True)),
+         UNIT],
+        [distant((0.0, 0.0, -1.0))], 9, 9, rows=(4, 4), encoding=LINEAR),
     # Edge-value table entries in every field.
     "edge-values": scene(
         ((special(13), special(14), special(6)), (0.0, 0.0, 0.0), (special(5), 1.0, 0.0), special(21)),

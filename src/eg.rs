@@ -184,7 +184,10 @@ impl<'a, R: Render, C: EgColor> Drawing<'a, R, C> {
         let mut px = [C::Pixel::default(); 4];
         let n = (self.frame.width() as usize).min(4);
         let px = px.get_mut(..n)?;
-        self.frame.render_segment(y, 0, px).ok()?;
+        // Cannot fail: `y` is a row of the frame and the segment starts at its left edge.
+        let rendered = self.frame.render_segment(y, 0, px);
+        debug_assert!(rendered.is_ok(), "row {y}: {rendered:?}");
+        rendered.ok()?;
         let first = *px.first()?;
         px.iter().all(|p| *p == first).then(|| C::from_pixel(first))
     }
@@ -251,17 +254,17 @@ impl<R: Render, C: EgColor> Iterator for RowColors<'_, R, C> {
             let pixels = self.chunk.get_mut(..n)?;
             // Cannot fail: the row and the segment are inside the frame. Were it to, the
             // chunk would hold default pixels rather than stop the stream short.
-            if self
-                .frame
-                .render_segment(self.y, self.next_x, pixels)
-                .is_err()
-            {
+            let rendered = self.frame.render_segment(self.y, self.next_x, pixels);
+            debug_assert!(rendered.is_ok(), "row {}: {rendered:?}", self.y);
+            if rendered.is_err() {
                 pixels.fill(C::Pixel::default());
             }
             self.next_x += n as u32;
             self.used = 0;
             self.filled = n;
         }
+        // `used < filled ≤ LINE_CHUNK`: cannot fail.
+        debug_assert!(self.used < self.filled && self.filled <= LINE_CHUNK);
         let p = *self.chunk.get(self.used)?;
         self.used += 1;
         Some(C::from_pixel(p))

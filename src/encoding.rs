@@ -273,6 +273,8 @@ pub fn srgb_encode(code: u32) -> u32 {
     let code = code.min(1 << 16);
     let i = (code >> 4) as usize;
     let f = code & 15;
+    // `i ≤ SRGB_TABLE_STEPS`; only the last entry has no successor, and there `f` is 0.
+    debug_assert!(i < SRGB_TABLE.len() && (f == 0 || i + 1 < SRGB_TABLE.len()));
     let lo = SRGB_TABLE.get(i).copied().unwrap_or(32768) as u32;
     let hi = SRGB_TABLE.get(i + 1).copied().unwrap_or(32768) as u32;
     // In units of 2⁻¹⁹: lo·16 + (hi − lo)·f, the table being non-decreasing; then to 0.16.

@@ -83,7 +83,8 @@
 //!
 //! `#![no_std]`, no allocation, `#![forbid(unsafe_code)]`; Rust 1.93 or later (the `fixed`
 //! crate's MSRV). Built in CI for `thumbv6m-none-eabi` (Cortex-M0), `thumbv7em-none-eabihf`
-//! (Cortex-M4F/M7) and `riscv32imac-unknown-none-elf`, and tested on x86-64 (SSE2 and AVX2).
+//! (Cortex-M4F/M7) and `riscv32imac-unknown-none-elf`; the float paths' bit-identity is
+//! tested on x86-64 (SSE2, AVX2, the native CPU), aarch64 (NEON) and wasm32 (simd128).
 //!
 //! ## The lesson
 //!

@@ -235,6 +235,8 @@ pub trait Render {
         let mut chunk = [P::default(); LINE_CHUNK];
         for (i, out) in bytes.chunks_mut(LINE_CHUNK * P::BYTES).enumerate() {
             let n = out.len() / P::BYTES;
+            // `out` holds at most LINE_CHUNK pixels' bytes: cannot fail.
+            debug_assert!(n <= LINE_CHUNK, "{n} pixels in a chunk");
             let Some(pixels) = chunk.get_mut(..n) else {
                 break;
             };

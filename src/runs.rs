@@ -107,6 +107,8 @@ pub(crate) fn walk_runs<P: Pixel>(
         if start >= end {
             continue;
         }
+        // Runs are sorted and disjoint: each starts at or after the last one's end.
+        debug_assert!(x <= start, "run {run:?} starts before column {x}");
         if let Some(gap) = out.get_mut(x - seg_start..start - seg_start) {
             background.fill(gap, x);
         }
@@ -124,7 +126,9 @@ pub(crate) fn walk_runs<P: Pixel>(
 pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Vec<Span, S> {
     let mut runs: heapless::Vec<Span, S> = heapless::Vec::new();
     for span in spans.iter().flatten() {
-        let _ = runs.push(*span);
+        // At most one span per sphere: cannot fail.
+        let pushed = runs.push(*span);
+        debug_assert!(pushed.is_ok(), "more spans than spheres");
     }
     // Insertion sort by start: S is small and this is once per row. Written with a slice
     // pattern instead of indexing so that no bounds check (and no panic path) is left for
@@ -144,7 +148,9 @@ pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Ve
         match merged.last_mut() {
             Some(last) if span.start <= last.end => last.end = last.end.max(span.end),
             _ => {
-                let _ = merged.push(span);
+                // No more merged runs than runs: cannot fail.
+                let pushed = merged.push(span);
+                debug_assert!(pushed.is_ok(), "more merged runs than runs");
             }
         }
     }

@@ -820,6 +820,8 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     pub(crate) fn shadow_casters(&self, i: usize, light: &Light) -> u32 {
         let spheres = self.spheres();
+        // Prepare asks about its own spheres only.
+        debug_assert!(i < spheres.len(), "sphere {i} of {}", spheres.len());
         let Some(own) = spheres.get(i) else {
             return 0;
         };
@@ -828,7 +830,10 @@ impl<const S: usize, const L: usize> Scene<S, L> {
         // `0 ≤ t ≤ 1` up to a point light.
         let (s, t_max) = match *light {
             Light::Distant { direction, .. } => {
-                ((-direction).normalized().unwrap_or_default(), f32::INFINITY)
+                // Validated: finite and not zero.
+                let unit = (-direction).normalized();
+                debug_assert!(unit.is_some(), "light direction {direction:?}");
+                (unit.unwrap_or_default(), f32::INFINITY)
             }
             Light::Point { position, .. } => (position - own.center, 1.0),
         };

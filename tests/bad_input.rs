@@ -3,10 +3,13 @@
 //!
 //! For a case that renders, every path renders the rows, and the test asserts that every
 //! linear channel is finite and non-negative, that the float paths (scalar, 4 lanes, 8 lanes)
-//! are bit-identical, that the fixed-point path either refuses the scene as out of its range
-//! or stays within its budget of the scalar path, and a property showing the image is the
-//! defined one (which sphere each pixel hits, which lights are blocked). The fuzz targets in `fuzz/` search the same space at
-//! random; the regression cases at the end are inputs they found.
+//! are bit-identical, also with every encoding (linear or sRGB, with or without dithering)
+//! in Rgb565, Bgr565 and Gray8 and as display bytes, that the fixed-point path does what the
+//! case says it does (stays within its budget of the scalar path, with at most 0.1 % of the
+//! pixels' ray decisions differing; only renders, for ill-conditioned pixels; or refuses the
+//! scene as out of its range), and a property showing the image is the defined one (which
+//! sphere each pixel hits, which lights are blocked). The fuzz targets in `fuzz/` search the
+//! same space at random; the regression cases at the end are inputs they found.
 
 use shadeline::scene::{MAX_COORDINATE, MAX_INTENSITY, MAX_SHININESS, MAX_VALUE, MIN_RADIUS};
 use shadeline::*;
@@ -110,40 +113,91 @@ fn bits(row: &Row) -> Vec<[u32; 3]> {
 /// The fixed-point path's budget against the scalar path, in 8-bit levels, on pixels whose
 /// hit records agree.
 const FIXED_LEVELS: i32 = 2;
+/// Largest share of rendered pixels whose hit records (ray decisions) may differ between
+/// the fixed and the scalar path: the fixed contract's 0.1 %.
+const MAX_DIFFER: f64 = 0.001;
+
+/// What a case expects of the fixed-point path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Fixed {
+    /// It renders within its budget of the scalar path: at most [`FIXED_LEVELS`] where the
+    /// hit records agree, and at most [`MAX_DIFFER`] of the pixels with differing ones.
+    Budget,
+    /// It renders (ill-conditioned pixels, where a rounding of the hit point flips the
+    /// answer and the budget does not apply).
+    Renders,
+    /// It refuses the scene as out of its range.
+    Refused,
+}
+
+const ENCODINGS: [Encoding; 4] = [
+    Encoding::LINEAR,
+    Encoding::LINEAR.dithered(),
+    Encoding::SRGB,
+    Encoding::SRGB.dithered(),
+];
 
 /// Renders rows `ys` of `scene` at `w × h` in every path; asserts every channel is finite and
 /// non-negative, hit records name existing spheres and lights, the float paths are
-/// bit-identical, and the fixed path (if the scene fits its range; otherwise it must refuse
-/// it with `OutOfFixedRange`) is within its budget. Returns the scalar rows.
+/// bit-identical (with every encoding too), and the fixed path is within its budget.
+/// Returns the scalar rows.
 fn rows<const SN: usize, const LN: usize>(
     scene: &Scene<SN, LN>,
     w: u32,
     h: u32,
     ys: &[u32],
 ) -> Vec<Row> {
-    rows_checked(scene, w, h, ys, true)
+    rows_checked(scene, w, h, ys, Fixed::Budget)
 }
 
-/// [`rows`], with the fixed path's budget checked only if `fixed_budget`; otherwise it need
-/// only render (for ill-conditioned pixels, where a rounding of the hit point flips the
-/// answer, and the budget does not apply).
+/// Row `y` of `r` with encoding `e` in Rgb565, Bgr565 and Gray8, and as their bytes.
+fn encoded<R: Render + Clone>(
+    r: &R,
+    y: u32,
+    e: Encoding,
+) -> (Vec<Rgb565>, Vec<Bgr565>, Vec<Gray8>, Vec<u8>) {
+    let r = r.clone().with_encoding(e);
+    let w = r.width() as usize;
+    let (mut a, mut b, mut c) = (
+        vec![Rgb565::default(); w],
+        vec![Bgr565::default(); w],
+        vec![Gray8::default(); w],
+    );
+    r.render_line(y, &mut a).expect("row renders");
+    r.render_line(y, &mut b).expect("row renders");
+    r.render_line(y, &mut c).expect("row renders");
+    let mut bytes = vec![0u8; 5 * w];
+    let (b565, rest) = bytes.split_at_mut(2 * w);
+    let (b_bgr, b_gray) = rest.split_at_mut(2 * w);
+    r.render_line_bytes::<Rgb565>(y, b565).expect("row renders");
+    r.render_line_bytes::<Bgr565>(y, b_bgr)
+        .expect("row renders");
+    r.render_line_bytes::<Gray8>(y, b_gray)
+        .expect("row renders");
+    (a, b, c, bytes)
+}
+
+/// [`rows`], with what the fixed path must do.
 fn rows_checked<const SN: usize, const LN: usize>(
     scene: &Scene<SN, LN>,
     w: u32,
     h: u32,
     ys: &[u32],
-    fixed_budget: bool,
+    fixed: Fixed,
 ) -> Vec<Row> {
     let scalar = Prepared::<Scalar, SN, LN>::new(scene, w, h).unwrap();
     let simd4 = Prepared::<Simd4, SN, LN>::new(scene, w, h).unwrap();
     let simd8 = Prepared::<Simd8, SN, LN>::new(scene, w, h).unwrap();
-    let fixed = match PreparedFixed::<SN, LN>::new(scene, w, h) {
-        Ok(f) => Some(f),
-        Err(RenderError::OutOfFixedRange { .. }) => None,
-        Err(e) => panic!("fixed path: {e}"),
+    let fixed_frame = match (PreparedFixed::<SN, LN>::new(scene, w, h), fixed) {
+        (Ok(f), Fixed::Budget | Fixed::Renders) => Some(f),
+        (Err(RenderError::OutOfFixedRange { .. }), Fixed::Refused) => None,
+        (Ok(_), Fixed::Refused) => panic!("fixed path: accepted a scene it should refuse"),
+        (Err(e), _) => panic!("fixed path: {e}"),
     };
     let lights = scene.lights().len();
-    ys.iter()
+    let (mut pixels, mut differ) = (0usize, 0usize);
+    let out = ys
+        .iter()
         .map(|&y| {
             let want = render(&scalar, y);
             for (x, (c, hit)) in want.linear.iter().zip(&want.hits).enumerate() {
@@ -162,14 +216,24 @@ fn rows_checked<const SN: usize, const LN: usize>(
                 );
                 assert!(got.hits == want.hits, "{name} row {y}: hit records differ");
             }
-            if let Some(fixed) = &fixed {
-                let got = render(fixed, y);
-                if !fixed_budget {
+            for e in ENCODINGS {
+                let want = encoded(&scalar, y, e);
+                assert!(encoded(&simd4, y, e) == want, "simd4 row {y}, {e:?}");
+                assert!(encoded(&simd8, y, e) == want, "simd8 row {y}, {e:?}");
+            }
+            if let Some(f) = &fixed_frame {
+                let got = render(f, y);
+                for e in ENCODINGS {
+                    encoded(f, y, e);
+                }
+                if fixed == Fixed::Renders {
                     return want;
                 }
-                let (a, b) = (rgb888(fixed, y), rgb888(&scalar, y));
+                let (a, b) = (rgb888(f, y), rgb888(&scalar, y));
                 for x in 0..w as usize {
+                    pixels += 1;
                     if got.hits[x] != want.hits[x] {
+                        differ += 1;
                         continue;
                     }
                     let levels = [(a[x].r, b[x].r), (a[x].g, b[x].g), (a[x].b, b[x].b)]
@@ -184,7 +248,12 @@ fn rows_checked<const SN: usize, const LN: usize>(
             }
             want
         })
-        .collect()
+        .collect();
+    assert!(
+        differ as f64 <= MAX_DIFFER * pixels as f64,
+        "fixed path: {differ} of {pixels} pixels' ray decisions differ from the scalar path's"
+    );
+    out
 }
 
 fn rgb888<R: Render>(frame: &R, y: u32) -> Vec<Rgb888> {
@@ -377,7 +446,9 @@ fn radius_1e30_is_refused() {
     })
     .unwrap();
     s.add_light(point(Vec3::new(0.0, 0.0, 4.0))).unwrap();
-    for row in frame(&s, 9, 7) {
+    // A light inside the sphere around the camera: the fixed path's rounding puts it on
+    // either side of nearby surfaces, so its shadow decisions are ill-conditioned.
+    for row in rows_checked(&s, 9, 7, &(0..7).collect::<Vec<_>>(), Fixed::Renders) {
         assert!(row.hits.iter().all(|h| h.sphere == Some(0)));
     }
 }
@@ -555,7 +626,9 @@ fn light_inside_an_opaque_sphere_lights_nothing_outside() {
     .unwrap();
     s.add_light(point(Vec3::new(1.2, 0.0, 0.0))).unwrap();
     let mut seen = [0usize; 2];
-    for row in frame(&s, 31, 15) {
+    // Ill-conditioned for the fixed path: the light is inside a sphere, where its rounding
+    // decides which side of the surface the light is on.
+    for row in rows_checked(&s, 31, 15, &(0..15).collect::<Vec<_>>(), Fixed::Renders) {
         for (c, h) in row.linear.iter().zip(&row.hits) {
             match h.sphere {
                 Some(0) => {
@@ -581,7 +654,7 @@ fn point_light_exactly_at_a_hit_point_is_finite() {
     s.add_light(point(Vec3::new(0.0, 0.0, 1.0))).unwrap();
     // The fixed path rounds the hit point to 2^-16 units, which puts the light a hair above
     // the surface, fully lit and saturated: ill-conditioned, so only "renders" is asserted.
-    let rows = rows_checked(&s, 9, 9, &(0..9).collect::<Vec<_>>(), false);
+    let rows = rows_checked(&s, 9, 9, &(0..9).collect::<Vec<_>>(), Fixed::Renders);
     assert_eq!(rows[4].hits[4].sphere, Some(0));
     // Zero distance: no direction to the light, so no diffuse or specular term (not NaN).
     assert_eq!(rows[4].linear[4], LinearRgb::new(0.0, 0.0, 0.0));
@@ -612,7 +685,8 @@ fn brightest_point_light_on_a_surface_saturates_without_overflow() {
         })
         .unwrap();
     }
-    let rows = frame(&s, 9, 9);
+    // kd·albedo is far above the fixed path's largest level: it refuses the scene.
+    let rows = rows_checked(&s, 9, 9, &(0..9).collect::<Vec<_>>(), Fixed::Refused);
     let centre = rows[4].linear[4];
     assert!(centre.r > 1.0e30, "{centre:?}");
     let mut px = [Rgb888::default(); 9];
@@ -628,6 +702,349 @@ fn brightest_point_light_on_a_surface_saturates_without_overflow() {
             b: 255
         }
     );
+}
+
+// ---------------------------------------------------------------------------------------------
+// The models' options: metal, ior, lobes
+
+fn spec(surface: Surface, more_lobes: [Lobe; MORE_LOBES]) -> Specular {
+    Specular {
+        surface,
+        more_lobes,
+    }
+}
+
+fn normalized_sphere(blinn: bool, spec: Specular, kd: f32, ks: f32, shininess: f32) -> Sphere {
+    let model = if blinn {
+        Model::NormalizedBlinnPhong(spec)
+    } else {
+        Model::NormalizedPhong(spec)
+    };
+    Sphere {
+        material: Material {
+            albedo: LinearRgb::new(0.6, 0.3, 0.2),
+            kd,
+            ks,
+            shininess,
+            model,
+        },
+        ..sphere()
+    }
+}
+
+fn ior_error(ior: f32) -> SceneError {
+    let s = spec(
+        Surface::Dielectric { ior: Some(ior) },
+        [Lobe::NONE; MORE_LOBES],
+    );
+    sphere_error(normalized_sphere(false, s, 0.5, 0.5, 20.0))
+}
+
+/// A sphere with lobe `k` (1 or 2) replaced by `lobe`.
+fn lobe_error(k: usize, lobe: Lobe) -> SceneError {
+    let mut more = [Lobe::NONE; MORE_LOBES];
+    more[k - 1] = lobe;
+    let s = spec(Surface::Dielectric { ior: None }, more);
+    sphere_error(normalized_sphere(true, s, 0.5, 0.3, 20.0))
+}
+
+/// One sphere with the model of `s` under a light from behind the camera.
+fn model_scene(s: Sphere) -> S {
+    let mut scene = empty_scene();
+    scene.add_sphere(s).unwrap();
+    scene
+        .add_light(Light::Distant {
+            direction: Vec3::new(0.2, -0.3, -1.0),
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 1.5,
+        })
+        .unwrap();
+    scene
+}
+
+#[test]
+fn ior_nan_or_inf_is_refused() {
+    for bad in NON_FINITE {
+        assert_eq!(
+            ior_error(bad),
+            invalid(Item::Sphere(0), "ior", Problem::NotFinite)
+        );
+    }
+}
+
+#[test]
+fn ior_of_one_or_below_is_refused() {
+    let want = invalid(Item::Sphere(0), "ior", Problem::NotAboveOne);
+    for ior in [1.0, 0.999_999_94, 0.5, 0.0, -0.0, -1.5, f32::MIN] {
+        assert_eq!(ior_error(ior), want, "ior {ior}");
+    }
+}
+
+#[test]
+fn ior_above_max_value_is_refused() {
+    let want = invalid(Item::Sphere(0), "ior", Problem::TooLarge);
+    assert_eq!(ior_error(1.000_000_1e6), want);
+    assert_eq!(ior_error(f32::MAX), want);
+}
+
+#[test]
+fn ior_just_above_one_or_at_the_limit_renders() {
+    // Just above 1 (F₀ ≈ 0: the highlight vanishes at normal incidence) and at MAX_VALUE
+    // (F₀ ≈ 1: a mirror-like highlight and no diffuse light left).
+    for ior in [1.000_000_1, MAX_VALUE] {
+        for blinn in [false, true] {
+            let s = spec(
+                Surface::Dielectric { ior: Some(ior) },
+                [Lobe::NONE; MORE_LOBES],
+            );
+            let scene = model_scene(normalized_sphere(blinn, s, 0.5, 0.5, 40.0));
+            let rows = frame(&scene, 17, 17);
+            assert_eq!(rows[8].hits[8].sphere, Some(0));
+        }
+    }
+}
+
+#[test]
+fn lobe_weight_negative_is_refused() {
+    for (k, field) in [(1, "lobes[1].weight"), (2, "lobes[2].weight")] {
+        for weight in [-1.0e-45, -0.5, f32::MIN] {
+            let lobe = Lobe {
+                weight,
+                shininess: 10.0,
+            };
+            assert_eq!(
+                lobe_error(k, lobe),
+                invalid(Item::Sphere(0), field, Problem::Negative)
+            );
+        }
+    }
+}
+
+#[test]
+fn lobe_weight_nan_inf_or_too_large_is_refused() {
+    for bad in NON_FINITE {
+        let lobe = Lobe {
+            weight: bad,
+            shininess: 10.0,
+        };
+        assert_eq!(
+            lobe_error(2, lobe),
+            invalid(Item::Sphere(0), "lobes[2].weight", Problem::NotFinite)
+        );
+    }
+    let lobe = Lobe {
+        weight: MAX_VALUE * 2.0,
+        shininess: 10.0,
+    };
+    assert_eq!(
+        lobe_error(1, lobe),
+        invalid(Item::Sphere(0), "lobes[1].weight", Problem::TooLarge)
+    );
+}
+
+#[test]
+fn lobe_shininess_nan_zero_negative_or_too_large_is_refused() {
+    let field = "lobes[1].shininess";
+    let cases = [
+        (f32::NAN, Problem::NotFinite),
+        (f32::INFINITY, Problem::NotFinite),
+        (0.0, Problem::NotPositive),
+        (-0.0, Problem::NotPositive),
+        (-3.0, Problem::NotPositive),
+        (1.000_000_1e6, Problem::TooLarge),
+    ];
+    for (shininess, problem) in cases {
+        let lobe = Lobe {
+            weight: 0.2,
+            shininess,
+        };
+        assert_eq!(
+            lobe_error(1, lobe),
+            invalid(Item::Sphere(0), field, problem),
+            "shininess {shininess}"
+        );
+    }
+    // An absent lobe (weight 0) is still checked: its exponent must be valid too.
+    let absent = Lobe {
+        weight: 0.0,
+        shininess: f32::NAN,
+    };
+    assert_eq!(
+        lobe_error(2, absent),
+        invalid(Item::Sphere(0), "lobes[2].shininess", Problem::NotFinite)
+    );
+}
+
+#[test]
+fn lobes_with_extreme_exponents_render() {
+    // Three lobes at once: n = 10⁻³ (nearly constant over the hemisphere), 1 and 10⁶ (a
+    // pinpoint), with the largest weight: finite, saturated where it is bright.
+    let more = [
+        Lobe {
+            weight: MAX_VALUE,
+            shininess: 1.0e-3,
+        },
+        Lobe {
+            weight: 1.0,
+            shininess: MAX_SHININESS,
+        },
+    ];
+    for blinn in [false, true] {
+        let s = spec(Surface::Dielectric { ior: None }, more);
+        let scene = model_scene(normalized_sphere(blinn, s, 0.2, 1.0, 1.0));
+        // Ill-conditioned: a lobe of n = 10⁻³ has an infinite slope at cos = 0, where a
+        // rounding of the hit point moves the pixel by many levels.
+        let rows = rows_checked(&scene, 15, 15, &(0..15).collect::<Vec<_>>(), Fixed::Renders);
+        assert!(rows[7].linear[7].r > 1.0, "{:?}", rows[7].linear[7]);
+    }
+}
+
+#[test]
+fn no_specular_lobe_at_all_is_the_diffuse_lobe_alone() {
+    // ks = 0 and lobes 1 and 2 absent: normalized Phong is Lambert, bit for bit.
+    let s = spec(Surface::Dielectric { ior: None }, [Lobe::NONE; MORE_LOBES]);
+    let phong = normalized_sphere(false, s, 0.8, 0.0, 50.0);
+    let lambert = Sphere {
+        material: Material {
+            model: Model::Lambert,
+            ..phong.material
+        },
+        ..phong
+    };
+    let a = frame(&model_scene(phong), 13, 13);
+    let b = frame(&model_scene(lambert), 13, 13);
+    for (ra, rb) in a.iter().zip(&b) {
+        assert!(bits(ra) == bits(rb));
+    }
+}
+
+#[test]
+fn lambert_ignores_ks_and_shininess() {
+    let with = |ks, shininess| {
+        let s = Sphere {
+            material: Material {
+                albedo: LinearRgb::new(0.5, 0.4, 0.3),
+                kd: 0.9,
+                ks,
+                shininess,
+                model: Model::Lambert,
+            },
+            ..sphere()
+        };
+        frame(&model_scene(s), 11, 11)
+    };
+    let (a, b) = (with(0.0, 1.0), with(MAX_VALUE, 1.0e-3));
+    for (ra, rb) in a.iter().zip(&b) {
+        assert!(bits(ra) == bits(rb));
+    }
+}
+
+#[test]
+fn a_metal_ignores_kd_and_albedo_and_tints_its_highlight() {
+    for metal in Metal::ALL {
+        let s = spec(Surface::Metal(metal), [Lobe::NONE; MORE_LOBES]);
+        let dark = normalized_sphere(true, s, 0.0, 1.0, 30.0);
+        let bright = Sphere {
+            material: Material {
+                albedo: LinearRgb::new(MAX_VALUE, MAX_VALUE, MAX_VALUE),
+                kd: MAX_VALUE,
+                ..dark.material
+            },
+            ..dark
+        };
+        let a = frame(&model_scene(dark), 21, 21);
+        // kd·albedo is out of the fixed path's range, but only on that path.
+        let b = rows_checked(
+            &model_scene(bright),
+            21,
+            21,
+            &(0..21).collect::<Vec<_>>(),
+            Fixed::Refused,
+        );
+        for (ra, rb) in a.iter().zip(&b) {
+            assert!(
+                bits(ra) == bits(rb),
+                "{metal:?}: kd or albedo changed a pixel"
+            );
+        }
+        // The brightest pixel is in the metal's colour: its channels in F₀'s order.
+        let top = a
+            .iter()
+            .flat_map(|r| r.linear.iter())
+            .max_by(|p, q| p.g.total_cmp(&q.g))
+            .unwrap();
+        let f0 = metal.f0();
+        assert!(top.r >= top.g && top.g >= top.b, "{metal:?}: {top:?}");
+        assert!(f0.r >= f0.g && f0.g >= f0.b);
+    }
+}
+
+#[test]
+fn weights_far_above_energy_conservation_saturate_finitely() {
+    // kd + Σ w = 3·10⁶: accepted (only flagged), finite, white where lit.
+    let more = [
+        Lobe {
+            weight: MAX_VALUE,
+            shininess: 2.0,
+        },
+        Lobe {
+            weight: MAX_VALUE,
+            shininess: 10.0,
+        },
+    ];
+    let s = spec(Surface::Dielectric { ior: Some(1.5) }, more);
+    let sphere = Sphere {
+        material: Material {
+            albedo: LinearRgb::new(1.0, 1.0, 1.0),
+            ..normalized_sphere(false, s, MAX_VALUE, MAX_VALUE, 5.0).material
+        },
+        ..sphere()
+    };
+    assert!(!sphere.material.is_energy_conserving());
+    let scene = model_scene(sphere);
+    let rows = rows_checked(&scene, 9, 9, &(0..9).collect::<Vec<_>>(), Fixed::Refused);
+    assert!(rows[4].linear[4].r > 1.0e5);
+    let mut px = [Gray8::default(); 9];
+    Prepared::<Simd8, 4, 4>::new(&scene, 9, 9)
+        .unwrap()
+        .with_encoding(Encoding::SRGB.dithered())
+        .render_line(4, &mut px)
+        .unwrap();
+    assert_eq!(px[4], Gray8(255));
+}
+
+#[test]
+fn black_stays_black_and_white_stays_white_in_every_encoding() {
+    // Dithering must not lift an exact 0 or lower an exact 1 (or more), in any format.
+    for (bg, want) in [
+        (0.0, [0u8, 0, 0]),
+        (1.0, [255, 255, 255]),
+        (MAX_VALUE, [255, 255, 255]),
+    ] {
+        let scene = S::new(camera(), LinearRgb::new(bg, bg, bg)).unwrap();
+        let f = Prepared::<Simd4, 4, 4>::new(&scene, 13, 6).unwrap();
+        let fixed = PreparedFixed::<4, 4>::new(&scene, 13, 6);
+        for e in ENCODINGS {
+            for y in 0..6 {
+                let (a, b, c, _) = encoded(&f, y, e);
+                assert!(
+                    a.iter().all(|p| p.to_bytes()
+                        == Rgb565::pack(
+                            want[0] as u16 >> 3,
+                            want[1] as u16 >> 2,
+                            want[2] as u16 >> 3
+                        )
+                        .to_bytes()),
+                    "{bg} {e:?}"
+                );
+                assert!(b.iter().all(|p| p.levels() == a[0].levels()), "{bg} {e:?}");
+                assert!(c.iter().all(|p| p.0 == want[0]), "{bg} {e:?}");
+                if let Ok(fixed) = &fixed {
+                    assert!(encoded(fixed, y, e).0 == a, "fixed {bg} {e:?}");
+                }
+            }
+        }
+    }
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -675,7 +1092,8 @@ fn vfov_179_999_sees_the_sphere_as_a_dot_in_the_middle() {
     for vfov in [179.999, 179.999_98] {
         let s = vfov_scene(vfov).unwrap();
         let (w, h) = (65, 65);
-        let rows = frame(&s, w, h);
+        // tan(vfov/2) is beyond the fixed path's camera-plane range: it refuses.
+        let rows = rows_checked(&s, w, h, &(0..h).collect::<Vec<_>>(), Fixed::Refused);
         // tan(vfov/2) is above 1e5: the sphere covers the centre pixel and nothing else.
         for (y, row) in rows.iter().enumerate() {
             for (x, hit) in row.hits.iter().enumerate() {
@@ -746,7 +1164,8 @@ fn width_9_renders() {
 fn width_65535_renders_a_few_rows() {
     let (w, h) = (MAX_DIMENSION, 3);
     // The frame is 65535 wide and 3 high, so the sphere is a small disc in the middle.
-    let rows = rows(&scene(), w, h, &[0, 1, 2]);
+    // The fixed path refuses so wide a frame: tan(vfov/2)·w/h is beyond its range.
+    let rows = rows_checked(&scene(), w, h, &[0, 1, 2], Fixed::Refused);
     let hit = rows[1].hits.iter().filter(|h| h.sphere.is_some()).count();
     assert!(hit > 0 && hit < 100, "{hit} pixels hit");
     assert_eq!(rows[1].hits[(w / 2) as usize].sphere, Some(0));
@@ -934,7 +1353,8 @@ fn radius_below_min_radius_is_refused() {
     })
     .unwrap();
     s.add_light(distant()).unwrap();
-    frame(&s, 9, 9);
+    // r² of the smallest radius is below the fixed path's resolution: it refuses.
+    rows_checked(&s, 9, 9, &(0..9).collect::<Vec<_>>(), Fixed::Refused);
 }
 
 #[test]
@@ -986,7 +1406,7 @@ fn point_light_a_hair_from_the_hit_points_with_a_black_channel_is_not_nan() {
         intensity: 0.2,
     })
     .unwrap();
-    let rows = rows_checked(&s, 36, 58982, &[39322, 29491], false);
+    let rows = rows_checked(&s, 36, 58982, &[39322, 29491], Fixed::Renders);
     for row in &rows {
         assert!(row.hits.iter().all(|h| h.sphere == Some(0)));
         // No red arrives; green and blue are lit or black, never NaN (checked in `rows`).

@@ -1,5 +1,6 @@
-//! The BRDF laws, for every model, on the brdf module's own formulas evaluated in `f64`
-//! ([`brdf::value`] over `f64`: the same code the float kernel runs on its lanes).
+//! The BRDF laws, for every model: on the brdf module's own formulas evaluated in `f64`
+//! ([`brdf::value`] over `f64`: the same code the float kernel runs on its lanes), and on
+//! what the f32 kernel and the fixed kernel actually put in a pixel.
 //!
 //! - positivity: `f ≥ 0` on random pairs of directions above the surface;
 //! - reciprocity: `f(ω_i, ω_o) = f(ω_o, ω_i)` within `1e-6` relative, for the models that
@@ -10,7 +11,17 @@
 //!   four standard errors of its Monte Carlo estimate) for every outgoing direction on a
 //!   grid of polar angles, for the normalized models with `kd + Σ w = 1` (albedo 1, the
 //!   worst case) and `n` from 1 to 10 000;
-//! - classic Phong breaks energy conservation: the largest albedo found is reported.
+//! - classic Phong breaks energy conservation: the largest albedo found is reported;
+//! - the lower side of energy conservation: at normal view (`V = N`) a normalized lobe
+//!   reflects exactly its weight, so Lambert and the normalized models without Fresnel
+//!   reflect `kd·albedo + Σ w` (checked by quadrature to `1e-6`, and by Monte Carlo within
+//!   four standard errors); a normalization half what it should be fails here, while it
+//!   passes every law above;
+//! - the kernels: a 1×1 frame whose one ray meets a sphere at a chosen normal and view,
+//!   lit by one distant light, holds `f(L, V)·cos θ_i` in its pixel. On the scalar f32 path
+//!   (the SIMD paths give its bits) and the fixed path: positivity, reciprocity (within
+//!   0.2 % plus three 16.16 steps), albedo at most 1 from every view, and at normal view
+//!   the albedo above.
 //!
 //! Monte Carlo: fixed seeds (SplitMix64), one-sample multiple importance sampling with the
 //! balance heuristic over a cosine-weighted strategy and one strategy per specular lobe
@@ -92,9 +103,28 @@ fn reflect(d: D, about: D) -> D {
 }
 
 /// The directional albedo of `m` seen from `view` (per channel, the largest channel's
-/// mean and standard error).
+/// mean and standard error), from the brdf module's `f64` formulas.
 fn albedo(m: &Material, view: D, seed: u64) -> (f64, f64) {
     let p = Params::<f64>::of(m);
+    let reflected = |l: D| {
+        let f = brdf::value(&p, N, l, view);
+        let c = dot(N, l);
+        [f.x * c, f.y * c, f.z * c]
+    };
+    albedo_of(m, view, SAMPLES, seed, reflected)
+}
+
+/// The directional albedo `∫ f cos θ_i dω_i` of `m` seen from `view`, by Monte Carlo over
+/// `samples` light directions, where `reflected(L)` is what the surface sends toward `view`
+/// per unit of light arriving from `L`: `f(L, V)·cos θ_i`, per channel. Returns the largest
+/// channel's mean and standard error.
+fn albedo_of(
+    m: &Material,
+    view: D,
+    samples: usize,
+    seed: u64,
+    mut reflected: impl FnMut(D) -> [f64; 3],
+) -> (f64, f64) {
     let blinn = matches!(m.model, Model::BlinnPhong | Model::NormalizedBlinnPhong(_));
     let mut lobes = vec![m.shininess as f64];
     if let Some(spec) = m.model.specular() {
@@ -121,7 +151,7 @@ fn albedo(m: &Material, view: D, seed: u64) -> (f64, f64) {
     };
     let mut rng = Rng(seed);
     let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
-    for i in 0..SAMPLES {
+    for i in 0..samples {
         let (u1, u2) = (rng.next(), rng.next());
         let k = i % strategies;
         let l = match k {
@@ -132,15 +162,15 @@ fn albedo(m: &Material, view: D, seed: u64) -> (f64, f64) {
         if dot(N, l) <= 1e-12 {
             continue;
         }
-        let f = brdf::value(&p, N, l, view);
-        let w = dot(N, l) / pdf(l);
-        for (c, fc) in [f.x, f.y, f.z].into_iter().enumerate() {
-            let x = fc * w;
+        let r = reflected(l);
+        let w = 1.0 / pdf(l);
+        for (c, rc) in r.into_iter().enumerate() {
+            let x = rc * w;
             sum[c] += x;
             sum2[c] += x * x;
         }
     }
-    let m = SAMPLES as f64;
+    let m = samples as f64;
     (0..3)
         .map(|c| {
             let mean = sum[c] / m;
@@ -360,4 +390,347 @@ fn classic_phong_breaks_energy_conservation() {
          (n = {n}, kd = {kd}, ks = {ks}, view {deg}°)"
     );
     assert!(a > 3.0, "classic Phong reflected at most {a}");
+}
+
+// ---------------------------------------------------------------------------------------------
+// The lower side of energy conservation: at normal view a normalized lobe reflects exactly
+// its weight, so a normalization that is too small (half of what it should be, say) fails
+// here, where the upper bound above cannot see it.
+
+/// Gauss–Legendre nodes and weights, five points on `[−1, 1]`.
+const GAUSS: [(f64, f64); 5] = [
+    (0.0, 0.568_888_888_888_888_9),
+    (-0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (0.538_469_310_105_683_1, 0.478_628_670_499_366_5),
+    (-0.906_179_845_938_664, 0.236_926_885_056_189_1),
+    (0.906_179_845_938_664, 0.236_926_885_056_189_1),
+];
+
+/// The directional albedo at normal view (`V = N`) by quadrature, per channel. At `V = N`
+/// every model depends on `θ_i` alone (`R·V = cos θ_i`, `N·H = cos(θ_i/2)`, `L·H` likewise),
+/// so `∫ f cos θ_i dω_i = 2π ∫₀¹ f(u)·u du` with `u = cos θ_i`. Integrated in `s = 1 − u`,
+/// where the lobes concentrate, on panels `[0, 10⁻¹²]` and then 20 per decade up to 1, five
+/// Gauss points each: far below `10⁻⁶` of error up to `n = 10⁴`.
+fn albedo_at_normal_view(p: &Params<f64>) -> [f64; 3] {
+    let mut edges = vec![0.0];
+    edges.extend((0..=240).map(|k| 10f64.powf(-12.0 + k as f64 / 20.0)));
+    let mut sum = [0.0f64; 3];
+    for panel in edges.windows(2) {
+        let (a, b) = (panel[0], panel[1]);
+        for (x, w) in GAUSS {
+            let u = 1.0 - (0.5 * (a + b) + 0.5 * (b - a) * x);
+            let l = v((1.0 - u * u).max(0.0).sqrt(), 0.0, u);
+            let f = brdf::value(p, N, l, N);
+            for (s, fc) in sum.iter_mut().zip([f.x, f.y, f.z]) {
+                *s += 0.5 * (b - a) * w * fc * u;
+            }
+        }
+    }
+    sum.map(|s| 2.0 * std::f64::consts::PI * s)
+}
+
+/// The albedo at normal view where it is known in closed form: `kd·max(albedo) + Σ w` for
+/// Lambert and the normalized models without Fresnel (each normalized lobe reflects exactly
+/// its weight at `V = N`). `None` with an `ior` or a metal, whose Schlick factor leaves only
+/// the quadrature.
+fn analytic_albedo_at_normal_view(m: &Material) -> Option<f64> {
+    let a = m.albedo;
+    let diffuse = (m.kd * a.r.max(a.g).max(a.b)) as f64;
+    match m.model {
+        Model::Lambert => Some(diffuse),
+        Model::NormalizedPhong(spec) | Model::NormalizedBlinnPhong(spec) => match spec.surface {
+            Surface::Dielectric { ior: None } => Some(
+                diffuse
+                    + m.ks as f64
+                    + spec.more_lobes.iter().map(|l| l.weight as f64).sum::<f64>(),
+            ),
+            _ => None,
+        },
+        _ => None,
+    }
+}
+
+/// What the albedo at normal view must be: the closed form where there is one, else the
+/// quadrature (the largest channel).
+fn expected_albedo_at_normal_view(m: &Material) -> f64 {
+    analytic_albedo_at_normal_view(m).unwrap_or_else(|| {
+        albedo_at_normal_view(&Params::of(m))
+            .into_iter()
+            .fold(0.0, f64::max)
+    })
+}
+
+#[test]
+fn normalized_lobes_and_lambert_reflect_their_weights_at_normal_view() {
+    let none = [Lobe::NONE; MORE_LOBES];
+    let plain = Surface::Dielectric { ior: None };
+    let mut worst = 0.0f64;
+    for n in EXPONENTS {
+        let lobes = [
+            Lobe {
+                weight: 0.2,
+                shininess: (n / 8.0).max(1.0),
+            },
+            Lobe {
+                weight: 0.1,
+                shininess: 1.0,
+            },
+        ];
+        // (material, its albedo at normal view: kd·albedo + Σ w)
+        let mut cases = vec![(white(1.0, 0.0, n, Model::Lambert), 1.0)];
+        for blinn in [false, true] {
+            cases.extend([
+                (white(0.0, 1.0, n, normalized(blinn, plain, none)), 1.0),
+                (white(0.0, 0.25, n, normalized(blinn, plain, none)), 0.25),
+                (white(0.5, 0.5, n, normalized(blinn, plain, none)), 1.0),
+                (white(0.3, 0.4, n, normalized(blinn, plain, lobes)), 1.0),
+                (white(0.2, 0.0, n, normalized(blinn, plain, lobes)), 0.5),
+            ]);
+        }
+        for (m, want) in cases {
+            let analytic = analytic_albedo_at_normal_view(&m).unwrap();
+            assert!((analytic - want).abs() < 1e-6, "{m:?}: {analytic}");
+            let got = albedo_at_normal_view(&Params::of(&m));
+            for a in got {
+                worst = worst.max((a - want).abs());
+                assert!((a - want).abs() < 1e-6, "{m:?}: albedo {a}, want {want}");
+            }
+        }
+    }
+    println!("albedo at normal view: largest error {worst:.1e} (bound 1e-6)");
+}
+
+#[test]
+fn blinn_phong_approximate_normalization_overshoots_at_normal_view() {
+    // The module docs: the well-known (n + 8)/(8π) overshoots the exact factor by up to
+    // 7.5 % near n = 10, so its albedo exceeds 1 at normal view. The quadrature sees it,
+    // which is also what shows the test above would catch a wrong factor.
+    let plain = Surface::Dielectric { ior: None };
+    let m = white(
+        0.0,
+        1.0,
+        10.0,
+        normalized(true, plain, [Lobe::NONE; MORE_LOBES]),
+    );
+    let exact = Params::<f64>::of(&m);
+    let approximate = Params {
+        weight: [18.0 / (8.0 * std::f64::consts::PI), 0.0, 0.0],
+        ..exact
+    };
+    let (a, e) = (
+        albedo_at_normal_view(&approximate)[0],
+        albedo_at_normal_view(&exact)[0],
+    );
+    println!("Blinn-Phong n = 10 at normal view: exact factor {e:.6}, (n + 8)/(8π) {a:.6}");
+    assert!(a > 1.07 && a < 1.08, "{a}");
+    let halved = Params {
+        weight: exact.weight.map(|w| w / 2.0),
+        ..exact
+    };
+    assert!((albedo_at_normal_view(&halved)[0] - 0.5).abs() < 1e-6);
+}
+
+#[test]
+fn monte_carlo_albedo_at_normal_view_is_the_expected_one() {
+    // The estimator of the upper-bound test, from below: each material's Monte Carlo albedo
+    // at V = N is, within four standard errors, 1 for kd + Σ w = 1 without Fresnel, and
+    // the quadrature's value with an ior or a metal's F₀.
+    let mut seed = 0x5eed_a100u64;
+    let mut worst = 0.0f64;
+    for n in EXPONENTS {
+        for (name, m) in every_model(n) {
+            seed += 1;
+            let want = expected_albedo_at_normal_view(&m);
+            let (mean, se) = albedo(&m, N, seed);
+            worst = worst.max((mean - want).abs() / se.max(1e-12));
+            assert!(
+                (mean - want).abs() <= 4.0 * se + 1e-9,
+                "{name} n={n}: Monte Carlo {mean} ± {se}, want {want}"
+            );
+        }
+    }
+    println!(
+        "Monte Carlo at normal view: worst {worst:.2} standard errors from the expected albedo"
+    );
+}
+
+// ---------------------------------------------------------------------------------------------
+// The laws on the kernels' own values: what the f32 kernel (scalar path; the SIMD paths give
+// its bits) and the fixed kernel put in a pixel.
+//
+// A 1×1 frame's one ray goes exactly along the camera's forward axis. The camera looks at
+// the origin from `4·V`; a unit sphere centred at `−N` touches the origin with normal `N`; a
+// distant light of colour 1 and intensity 1 shines from `L`. The pixel's linear colour is
+// then `f(L, V)·cos θ_i` per channel, for every normalized model.
+
+/// What the kernel of path `P` reflects toward `view` from a unit light arriving from `l`.
+fn kernel_reflected<P: KernelPath>(m: &Material, l: D, view: D) -> [f64; 3] {
+    let f32v = |d: D| Vec3::new(d.x as f32, d.y as f32, d.z as f32);
+    let camera = Camera {
+        position: f32v(view).scale(4.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: if view.y.abs() < 0.9 {
+            Vec3::new(0.0, 1.0, 0.0)
+        } else {
+            Vec3::new(1.0, 0.0, 0.0)
+        },
+        vfov_degrees: 30.0,
+    };
+    let mut scene: Scene<1, 1> = Scene::new(camera, LinearRgb::default()).unwrap();
+    scene
+        .add_sphere(Sphere {
+            center: f32v(N).scale(-1.0),
+            radius: 1.0,
+            material: *m,
+        })
+        .unwrap();
+    scene
+        .add_light(Light::Distant {
+            direction: -f32v(l),
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 1.0,
+        })
+        .unwrap();
+    let c = P::pixel(&scene);
+    [c.r as f64, c.g as f64, c.b as f64]
+}
+
+/// A path whose kernel the tests below read.
+trait KernelPath {
+    const NAME: &'static str;
+    /// The one pixel of a 1×1 frame of `scene`, linear.
+    fn pixel(scene: &Scene<1, 1>) -> LinearRgb;
+}
+
+struct FloatKernel;
+impl KernelPath for FloatKernel {
+    const NAME: &'static str = "f32 kernel";
+    fn pixel(scene: &Scene<1, 1>) -> LinearRgb {
+        let mut px = [LinearRgb::default()];
+        let frame = Prepared::<Scalar, 1, 1>::new(scene, 1, 1).unwrap();
+        frame.render_line(0, &mut px).unwrap();
+        px[0]
+    }
+}
+
+struct FixedKernel;
+impl KernelPath for FixedKernel {
+    const NAME: &'static str = "fixed kernel";
+    fn pixel(scene: &Scene<1, 1>) -> LinearRgb {
+        let mut px = [LinearRgb::default()];
+        let frame = PreparedFixed::<1, 1>::new(scene, 1, 1).unwrap();
+        frame.render_line(0, &mut px).unwrap();
+        px[0]
+    }
+}
+
+/// Exponents for the kernel tests: every decade of the range.
+const KERNEL_EXPONENTS: [f32; 5] = [1.0, 10.0, 100.0, 1000.0, 10000.0];
+const KERNEL_SAMPLES: usize = 4_000;
+
+fn kernel_laws<P: KernelPath>() {
+    // The setup reads what it should: the kernel's pixel is f·cos θ_i from brdf::value.
+    let m = white(
+        0.6,
+        0.4,
+        20.0,
+        normalized(
+            false,
+            Surface::Dielectric { ior: None },
+            [Lobe::NONE; MORE_LOBES],
+        ),
+    );
+    let (l, o) = (
+        view_at(30.0),
+        v(-(20f64.to_radians().sin()), 0.0, 20f64.to_radians().cos()),
+    );
+    let want = brdf::value(&Params::<f64>::of(&m), N, l, o).x * dot(N, l);
+    let got = kernel_reflected::<P>(&m, l, o)[0];
+    assert!(
+        (got - want).abs() <= 1e-3 * want,
+        "{}: {got} vs {want}",
+        P::NAME
+    );
+
+    // Positivity and reciprocity on random pairs of directions.
+    let mut rng = Rng(0x5eed_0b03);
+    let mut worst = 0.0f64;
+    for n in [1.0, 10.0, 100.0, 1000.0] {
+        for (name, m) in every_model(n) {
+            for _ in 0..40 {
+                let (l, o) = (random_direction(&mut rng), random_direction(&mut rng));
+                // Away from the horizon, where the hit point's rounding tilts N·L the most.
+                if dot(N, l) < 0.05 || dot(N, o) < 0.05 {
+                    continue;
+                }
+                let a = kernel_reflected::<P>(&m, l, o);
+                let b = kernel_reflected::<P>(&m, o, l);
+                for (x, y) in a.iter().zip(&b) {
+                    assert!(*x >= 0.0 && *y >= 0.0, "{}: {name}: {a:?} {b:?}", P::NAME);
+                    // f(L, V) = f(V, L): the pixels differ by the cosines only. Allowed:
+                    // 0.2 % of f, plus three steps of the fixed path's 16.16 output in each
+                    // pixel (divided by its cosine).
+                    let (fx, fy) = (x / dot(N, l), y / dot(N, o));
+                    let steps = 3.0 / 65536.0 * (1.0 / dot(N, l) + 1.0 / dot(N, o));
+                    let diff = (fx - fy).abs() / (2e-3 * fx.max(fy) + steps);
+                    worst = worst.max(diff);
+                    assert!(
+                        diff <= 1.0,
+                        "{}: {name} n={n}: f(L,V) {fx} vs f(V,L) {fy} (L={l:?} V={o:?})",
+                        P::NAME
+                    );
+                }
+            }
+        }
+    }
+    println!(
+        "{}: reciprocity: largest difference {:.0}% of the allowance",
+        P::NAME,
+        100.0 * worst
+    );
+
+    // Energy conservation, both sides: at most 1 from every view; at normal view 1 when
+    // kd + Σ w = 1 without Fresnel (the quadrature's value with an ior or a metal).
+    let mut seed = 0x5eed_c0de;
+    let mut worst = 0.0f64;
+    for n in KERNEL_EXPONENTS {
+        for (name, m) in every_model(n) {
+            let at_normal = expected_albedo_at_normal_view(&m);
+            for deg in [0.0, 60.0] {
+                seed += 1;
+                let view = view_at(deg);
+                let reflected = |l: D| kernel_reflected::<P>(&m, l, view);
+                let (mean, se) = albedo_of(&m, view, KERNEL_SAMPLES, seed, reflected);
+                assert!(
+                    mean <= 1.0 + 4.0 * se + 1e-3,
+                    "{}: {name} n={n} view {deg}°: albedo {mean} ± {se}",
+                    P::NAME
+                );
+                if deg == 0.0 {
+                    worst = worst.max((mean - at_normal).abs() / (4.0 * se + 1e-3));
+                    assert!(
+                        (mean - at_normal).abs() <= 4.0 * se + 1e-3,
+                        "{}: {name} n={n} at normal view: albedo {mean} ± {se}, want {at_normal}",
+                        P::NAME
+                    );
+                }
+            }
+        }
+    }
+    println!(
+        "{}: albedo at normal view: largest difference from the expected albedo {:.0}% of the \
+         allowance (4 standard errors + 1e-3)",
+        P::NAME,
+        100.0 * worst
+    );
+}
+
+#[test]
+fn the_f32_kernel_obeys_the_laws() {
+    kernel_laws::<FloatKernel>();
+}
+
+#[test]
+fn the_fixed_kernel_obeys_the_laws() {
+    kernel_laws::<FixedKernel>();
 }

@@ -160,6 +160,13 @@ fn exponent_series_frame_is_drawn_exactly_with_few_calls() {
                 // dithered background varies.
                 assert_eq!(a.0 + a.1, h as usize);
                 assert!(a.0 >= covered_rows(&r));
+                if e == Encoding::LINEAR {
+                    assert_eq!(
+                        a.0,
+                        covered_rows(&r),
+                        "{label}: one fill_contiguous per covered row"
+                    );
+                }
                 report.push(format!(
                     "{label}: fill_contiguous {}, fill_solid {}",
                     a.0, a.1
@@ -173,6 +180,8 @@ fn exponent_series_frame_is_drawn_exactly_with_few_calls() {
         assert_eq!(s, v, "scalar and SIMD spans are the same");
         if e == Encoding::LINEAR {
             assert!(s.1 > 0 && f.1 > 0, "background rows are solid fills");
+            // The README's figures for the float paths.
+            assert_eq!(s, (56, 184), "fills per frame on the float paths");
         }
         let _ = f;
     }

@@ -8,8 +8,8 @@
 //! - golden CRCs of dithered frames; the fixed path's closeness to scalar with each encoding;
 //! - byte order of the display-ready byte rows.
 //!
-//! CI runs the bit-identity checks on the default target CPU; `paths_agree` covers the SSE2
-//! baseline and `-C target-cpu=native`.
+//! CI runs this file on the default target CPU and, with `.ci/bit-identity`, on the SSE2
+//! baseline, with `-C target-cpu=native`, on aarch64 (NEON) and on wasm32 (simd128).
 
 mod common;
 use common::*;

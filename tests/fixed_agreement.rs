@@ -3,7 +3,10 @@
 //!
 //! Budget (pixels whose hit record — sphere hit, lights blocked — agrees with the
 //! reference's): at most 2 levels per 8-bit channel, at least 99% within 1 level; pixels whose
-//! hit record differs: at most 0.1% of a frame. Run with `-- --nocapture` to see the tables.
+//! hit record differs: at most 0.1% of a frame, and on the exponent series and the point-light
+//! scene at most 0.1% of
+//! each sphere's own pixels (those the reference sees on it), so a small sphere cannot hide
+//! its errors in a large frame. Run with `-- --nocapture` to see the tables.
 
 mod common;
 use common::*;
@@ -58,7 +61,9 @@ impl Stats {
             100.0 * self.differ_share()
         )
     }
-    fn check(&self, label: &str, frame_pixels: usize) {
+    /// The budget, for a whole frame or for one sphere's pixels: differing decisions are a
+    /// share of this group's pixels.
+    fn check(&self, label: &str) {
         assert!(
             self.max_levels <= MAX_LEVELS,
             "{label}: {} levels",
@@ -70,9 +75,10 @@ impl Stats {
             self.within_one_share()
         );
         assert!(
-            self.differ as f64 <= MAX_DIFFER * frame_pixels as f64,
-            "{label}: {} decisions differ",
-            self.differ
+            self.differ as f64 <= MAX_DIFFER * self.pixels as f64,
+            "{label}: {} of {} decisions differ",
+            self.differ,
+            self.pixels
         );
     }
 }
@@ -95,12 +101,6 @@ fn measure<const S: usize, const L: usize>(
             s.add(*c, *hit, want);
         }
     }
-    // The library's own helper must agree with this count.
-    let a = agreement(&fixed, &reference);
-    assert_eq!(
-        (a.decisions_differ, a.max_levels, a.within_one),
-        (all.differ, all.max_levels, all.within_one)
-    );
     (all, per_sphere)
 }
 
@@ -117,9 +117,9 @@ fn exponent_series_within_budget_per_size_and_per_n() {
         for (s, sphere) in per_sphere.iter().zip(scene.spheres()) {
             let label = format!("n = {}", sphere.material.shininess);
             println!("{}", s.row(&label));
-            s.check(&format!("{w}x{h} {label}"), (w * h) as usize);
+            s.check(&format!("{w}x{h} {label}"));
         }
-        all.check(&format!("exponent series {w}x{h}"), (w * h) as usize);
+        all.check(&format!("exponent series {w}x{h}"));
     }
 }
 
@@ -130,15 +130,14 @@ fn point_lights_and_blinn_phong_within_budget() {
     println!("\npoint lights, Blinn-Phong 400x300\n{HEADER}");
     println!("{}", all.row("whole frame"));
     for (s, sphere) in per_sphere.iter().zip(scene.spheres()) {
-        println!(
-            "{}",
-            s.row(&format!(
-                "{:?} n = {}",
-                sphere.material.model, sphere.material.shininess
-            ))
+        let label = format!(
+            "{:?} n = {}",
+            sphere.material.model, sphere.material.shininess
         );
+        println!("{}", s.row(&label));
+        s.check(&label);
     }
-    all.check("point lights, Blinn-Phong", 400 * 300);
+    all.check("point lights, Blinn-Phong");
 }
 
 #[test]
@@ -149,7 +148,7 @@ fn random_scenes_within_budget() {
     for (i, scene) in random_scenes(64, 0x5eed_f1ed).iter().enumerate() {
         let (all, _) = measure(scene, w, h);
         println!("{}", all.row(&format!("random {i}")));
-        all.check(&format!("random scene {i}"), (w * h) as usize);
+        all.check(&format!("random scene {i}"));
         total.pixels += all.pixels;
         total.differ += all.differ;
         total.within_one += all.within_one;

@@ -129,11 +129,27 @@ fn rows_in_any_order_and_every_pixel_format_agree() {
         f.render_line(y, &mut line).unwrap();
         assert_eq!(&line[..], &whole[(y as usize * 67)..(y as usize + 1) * 67]);
     }
-    // Rgb888 and the raw colour encode the same shade.
+    // Rgb888 and Rgb565 are the raw 16.16 colour clamped to [0, 1] and rounded to the
+    // nearest level, the default encoding's rule, written out here from its definition.
+    let level = |v: u32, max: u64| ((v.min(1 << 16) as u64 * max + (1 << 15)) >> 16) as u8;
     let raw: Vec<Raw> = frame(&f);
     let rgb: Vec<Rgb888> = frame(&f);
-    for (r, c) in raw.iter().zip(&rgb) {
-        assert_eq!(Rgb888::encode_fixed(&r.0), *c);
+    let rgb565: Vec<Rgb565> = frame(&f);
+    // Many levels: the rule is exercised over a range, not on a flat frame.
+    let mut reds: Vec<u8> = rgb.iter().map(|c| c.r).collect();
+    reds.sort_unstable();
+    reds.dedup();
+    assert!(reds.len() > 20, "{} red levels", reds.len());
+    for ((r, c), p) in raw.iter().zip(&rgb).zip(&rgb565) {
+        let [red, green, blue] = r.0.color;
+        assert_eq!(
+            [c.r, c.g, c.b],
+            [level(red, 255), level(green, 255), level(blue, 255)]
+        );
+        assert_eq!(
+            p.levels(),
+            (level(red, 31), level(green, 63), level(blue, 31))
+        );
     }
 }
 

@@ -20,7 +20,8 @@ fn bits(frame: &[LinearRgb]) -> Vec<[u32; 3]> {
         .collect()
 }
 
-/// Every width, with and without spans, against the scalar path without spans.
+/// Every width, with and without spans, against the scalar path without spans (the scalar
+/// path with spans, and both SIMD widths either way).
 fn assert_widths_identical<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
     w: u32,
@@ -40,15 +41,15 @@ fn assert_widths_identical<const S: usize, const L: usize>(
         let hits: Vec<HitRecord> = frame(r);
         assert!(hits == want_hits, "{label}: hit records differ");
     }
+    let scalar = Prepared::<Scalar, S, L>::new(scene, w, h).unwrap();
+    check(
+        &scalar,
+        &want,
+        &want_hits,
+        &format!("{what}: scalar, spans true"),
+    );
     for spans in [false, true] {
         let label = |p: &str| format!("{what}: {p}, spans {spans}");
-        let scalar = Prepared::<Scalar, S, L>::new(scene, w, h).unwrap();
-        check(
-            &scalar.with_spans(spans),
-            &want,
-            &want_hits,
-            &label("scalar"),
-        );
         let simd4 = Prepared::<Simd4, S, L>::new(scene, w, h).unwrap();
         check(&simd4.with_spans(spans), &want, &want_hits, &label("simd4"));
         let simd8 = Prepared::<Simd8, S, L>::new(scene, w, h).unwrap();

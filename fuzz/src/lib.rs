@@ -5,9 +5,9 @@
 //!
 //! | target | proves |
 //! |---|---|
-//! | `scene` | validation accepts exactly the documented ranges and never panics; every scene it accepts renders, in every path and pixel format, without a panic, to finite non-negative linear colour, hit records that name existing spheres and lights, and 8-bit / 5-6-5 pixels that are the quantized linear colour; bad sizes, rows and slices are refused with the exact error |
-//! | `paths_agree` | scalar, 4-lane and 8-lane output are bit-identical, with and without scanline spans; the fixed-point path, on scenes it accepts, is within 2 levels (8-bit) of the scalar path wherever their hit records agree |
-//! | `scene_file` | any bytes through the harness's TOML parser give an error or a scene, never a panic; parsed scenes render |
+//! | `scene` | validation accepts exactly the documented ranges, for every model and option (lobes, `ior`, metals), and never panics; every scene it accepts renders, in every path and pixel format, without a panic, to finite non-negative linear colour, hit records that name existing spheres and lights, 8-bit / 5-6-5 pixels that are the quantized linear colour, and, with one of the four encodings, Rgb888 / Rgb565 / Bgr565 / Gray8 pixels that are the encoding rule and byte rows that are their bytes; bad sizes, rows and slices are refused with the exact error |
+//! | `paths_agree` | scalar, 4-lane and 8-lane output are bit-identical, with and without scanline spans, in every format and encoding; the fixed-point path, on well-conditioned scenes it accepts, is within 2 levels (8-bit) of the scalar path wherever their hit records agree, and at most 0.1 % of the pixels compared over a run have differing hit records; refusals are counted |
+//! | `scene_file` | any bytes through the harness's TOML parser give an error or a scene, never a panic; parsed scenes render on the scalar, 8-lane and fixed paths, the float paths bit-identical with an encoding |
 //!
 //! # Adding a path
 //!
@@ -17,11 +17,13 @@
 //! 16.16 fixed point, so a miss is the background quantized, not the background's bits.
 
 use arbitrary::Arbitrary;
+use shadeline::encoding::{encode_levels, linear_code, linear_code_fixed};
 use shadeline::scene::{MAX_COORDINATE, MAX_INTENSITY, MAX_SHININESS, MAX_VALUE, MIN_RADIUS};
 use shadeline::{
-    Camera, HitRecord, Item, ItemKind, Light, LinearRgb, Material, Model, Pixel, Prepared,
-    PreparedFixed, Problem, Render, RenderError, Rgb565, Rgb888, Scalar, Scene, SceneError, Shade,
-    Simd4, Simd8, Sphere, Vec3,
+    Bgr565, BytePixel, Camera, Encoding, FixedShade, Gray8, HitRecord, Item, ItemKind, Light,
+    LinearRgb, Lobe, Material, Metal, Model, Pixel, Prepared, PreparedFixed, Problem, Render,
+    RenderError, Rgb565, Rgb888, Scalar, Scene, SceneError, Shade, Simd4, Simd8, Specular, Sphere,
+    Surface, Vec3, MORE_LOBES,
 };
 
 /// Sphere capacity of the fuzzed scenes: small, so that the capacity error is reached.
@@ -139,9 +141,89 @@ pub struct SphereIn {
     pub ks: Num,
     /// `shininess`.
     pub shininess: Num,
-    /// Blinn-Phong instead of Phong.
-    pub blinn: bool,
+    /// The reflection model and its options.
+    pub model: ModelIn,
 }
+
+/// A reflection model: every [`Model`], with arbitrary specular options.
+#[derive(Arbitrary, Clone, Copy, Debug)]
+pub enum ModelIn {
+    /// [`Model::Phong`].
+    Phong,
+    /// [`Model::BlinnPhong`].
+    BlinnPhong,
+    /// [`Model::Lambert`].
+    Lambert,
+    /// [`Model::NormalizedPhong`].
+    NormalizedPhong(SpecularIn),
+    /// [`Model::NormalizedBlinnPhong`].
+    NormalizedBlinnPhong(SpecularIn),
+}
+
+/// The normalized models' options: the surface and lobes 1 and 2.
+#[derive(Arbitrary, Clone, Copy, Debug)]
+pub struct SpecularIn {
+    /// What the surface is.
+    pub surface: SurfaceIn,
+    /// Lobes 1 and 2 (weight 0: absent).
+    pub lobes: [LobeIn; MORE_LOBES],
+}
+
+/// A [`Surface`].
+#[derive(Arbitrary, Clone, Copy, Debug)]
+pub enum SurfaceIn {
+    /// A dielectric without `ior`.
+    Dielectric,
+    /// A dielectric with this `ior`.
+    Fresnel(Num),
+    /// A metal, [`Metal::ALL`] modulo its length.
+    Metal(u8),
+}
+
+/// A [`Lobe`]'s numbers.
+#[derive(Arbitrary, Clone, Copy, Debug)]
+pub struct LobeIn {
+    /// `weight`.
+    pub weight: Num,
+    /// `shininess`.
+    pub shininess: Num,
+}
+
+impl ModelIn {
+    /// The model this stands for.
+    pub fn model(self) -> Model {
+        let spec = |s: SpecularIn| Specular {
+            surface: match s.surface {
+                SurfaceIn::Dielectric => Surface::Dielectric { ior: None },
+                SurfaceIn::Fresnel(ior) => Surface::Dielectric {
+                    ior: Some(ior.value()),
+                },
+                SurfaceIn::Metal(k) => {
+                    Surface::Metal(Metal::ALL[usize::from(k) % Metal::ALL.len()])
+                }
+            },
+            more_lobes: s.lobes.map(|l| Lobe {
+                weight: l.weight.value(),
+                shininess: l.shininess.value(),
+            }),
+        };
+        match self {
+            ModelIn::Phong => Model::Phong,
+            ModelIn::BlinnPhong => Model::BlinnPhong,
+            ModelIn::Lambert => Model::Lambert,
+            ModelIn::NormalizedPhong(s) => Model::NormalizedPhong(spec(s)),
+            ModelIn::NormalizedBlinnPhong(s) => Model::NormalizedBlinnPhong(spec(s)),
+        }
+    }
+}
+
+/// The four encodings, by [`SceneInput::encoding`] modulo 4.
+pub const ENCODINGS: [Encoding; 4] = [
+    Encoding::LINEAR,
+    Encoding::LINEAR.dithered(),
+    Encoding::SRGB,
+    Encoding::SRGB.dithered(),
+];
 
 /// A light's numbers.
 #[derive(Arbitrary, Clone, Copy, Debug)]
@@ -183,6 +265,8 @@ pub struct SceneInput {
     pub height: u16,
     /// Rows to render, taken modulo the height; the last row is always rendered too.
     pub rows: [u16; 2],
+    /// The encoding of the encoded rows: [`ENCODINGS`] modulo 4.
+    pub encoding: u8,
 }
 
 impl SceneInput {
@@ -192,6 +276,10 @@ impl SceneInput {
             1 + u32::from(self.width) % MAX_WIDTH,
             u32::from(self.height).max(1),
         )
+    }
+    /// The encoding this input asks for.
+    pub fn encoding(&self) -> Encoding {
+        ENCODINGS[usize::from(self.encoding) % ENCODINGS.len()]
     }
     /// The rows to render, each below `height`.
     pub fn rows(&self, height: u32) -> [u32; 3] {
@@ -248,7 +336,33 @@ mod model {
             ("ks", non_negative(&[m.ks], MAX_VALUE)),
             ("shininess", positive(m.shininess, MAX_SHININESS)),
         ];
-        checks.into_iter().find_map(|(f, p)| p.map(|p| (f, p)))
+        let first = checks.into_iter().find_map(|(f, p)| p.map(|p| (f, p)));
+        let Some(spec) = m.model.specular() else {
+            return first;
+        };
+        // The normalized models' options, after the fields every model has: each lobe's
+        // weight and exponent, then the ior.
+        const LOBES: [(&str, &str); MORE_LOBES] = [
+            ("lobes[1].weight", "lobes[1].shininess"),
+            ("lobes[2].weight", "lobes[2].shininess"),
+        ];
+        let lobes = spec.more_lobes.iter().zip(LOBES).flat_map(|(l, (w, n))| {
+            [
+                (w, non_negative(&[l.weight], MAX_VALUE)),
+                (n, positive(l.shininess, MAX_SHININESS)),
+            ]
+        });
+        let ior = match spec.surface {
+            Surface::Dielectric { ior: Some(ior) } => finite(&[ior])
+                .or((ior <= 1.0).then_some(Problem::NotAboveOne))
+                .or((ior > MAX_VALUE).then_some(Problem::TooLarge)),
+            _ => None,
+        };
+        first.or_else(|| {
+            lobes
+                .chain([("ior", ior)])
+                .find_map(|(f, p)| p.map(|p| (f, p)))
+        })
     }
 
     /// The first refused field of a light.
@@ -355,11 +469,7 @@ pub fn build_scene(input: &SceneInput) -> Option<FuzzScene> {
                 kd: s.kd.value(),
                 ks: s.ks.value(),
                 shininess: s.shininess.value(),
-                model: if s.blinn {
-                    Model::BlinnPhong
-                } else {
-                    Model::Phong
-                },
+                model: s.model.model(),
             },
         };
         let before = scene.spheres().len();
@@ -420,7 +530,7 @@ pub fn build_scene(input: &SceneInput) -> Option<FuzzScene> {
 /// scenes).
 pub trait PathVisitor {
     /// Called once per path with its name and its prepared frame (or why it was refused).
-    fn visit<R: Render>(&mut self, name: &'static str, prepared: Result<R, RenderError>);
+    fn visit<R: Render + Clone>(&mut self, name: &'static str, prepared: Result<R, RenderError>);
 }
 
 /// Prepares `scene` at `width × height` on every path and hands each to `visitor`, scalar
@@ -444,7 +554,8 @@ pub fn for_each_path<V: PathVisitor>(scene: &FuzzScene, width: u32, height: u32,
     );
 }
 
-/// A rendered row in every pixel format.
+/// A rendered row in every pixel format: with the default encoding, and with an encoding
+/// (sRGB and/or dithering) in every level format and as display bytes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Row {
     /// Linear colour, unclamped.
@@ -455,6 +566,18 @@ pub struct Row {
     pub rgb888: Vec<Rgb888>,
     /// 5-6-5 colour.
     pub rgb565: Vec<Rgb565>,
+    /// The encoding of the fields below.
+    pub encoding: Encoding,
+    /// 8-bit colour, encoded.
+    pub enc_rgb888: Vec<Rgb888>,
+    /// 5-6-5 colour, encoded.
+    pub enc_rgb565: Vec<Rgb565>,
+    /// 5-6-5 colour with red and blue swapped, encoded.
+    pub enc_bgr565: Vec<Bgr565>,
+    /// Rec. 709 luma, encoded.
+    pub enc_gray8: Vec<Gray8>,
+    /// The encoded row as display bytes (`render_line_bytes`): RGB565, BGR565, RGB888, Gray8.
+    pub bytes: [Vec<u8>; 4],
 }
 
 impl Row {
@@ -474,24 +597,120 @@ fn line<P: Pixel + Default, R: Render>(r: &R, y: u32) -> Vec<P> {
     out
 }
 
-/// Renders row `y` in every pixel format.
-pub fn render_row<R: Render>(r: &R, y: u32) -> Row {
+fn line_bytes<P: BytePixel, R: Render>(r: &R, y: u32) -> Vec<u8> {
+    let mut out = vec![0u8; r.width() as usize * P::BYTES];
+    r.render_line_bytes::<P>(y, &mut out)
+        .unwrap_or_else(|e| panic!("byte row {y} refused: {e}"));
+    out
+}
+
+/// Renders row `y` in every pixel format, and with `encoding` in every level format and as
+/// display bytes.
+pub fn render_row<R: Render + Clone>(r: &R, y: u32, encoding: Encoding) -> Row {
+    let e = r.clone().with_encoding(encoding);
     Row {
         linear: line(r, y),
         hits: line(r, y),
         rgb888: line(r, y),
         rgb565: line(r, y),
+        encoding,
+        enc_rgb888: line(&e, y),
+        enc_rgb565: line(&e, y),
+        enc_bgr565: line(&e, y),
+        enc_gray8: line(&e, y),
+        bytes: [
+            line_bytes::<Rgb565, _>(&e, y),
+            line_bytes::<Bgr565, _>(&e, y),
+            line_bytes::<Rgb888, _>(&e, y),
+            line_bytes::<Gray8, _>(&e, y),
+        ],
     }
 }
 
-/// Asserts what every row of every path must satisfy, whatever the scene: finite,
+/// The pixel of format `P` at `(x, y)` that the encoding rule gives for `color`: the
+/// per-pixel definition in `shadeline::encoding` (linear codes, transfer, threshold), or
+/// with the default encoding the per-pixel `encode` of the path's numbers (`f32`, or the
+/// fixed path's 16.16 colour, which its linear output holds exactly).
+fn rule<P: Pixel>(color: LinearRgb, e: Encoding, float: bool, x: u32, y: u32) -> P {
+    let raw = |v: f32| (v * 65536.0) as u32;
+    if e == Encoding::LINEAR {
+        return if float {
+            P::encode(&Shade {
+                color,
+                hit: HitRecord::default(),
+            })
+        } else {
+            P::encode_fixed(&FixedShade {
+                color: [raw(color.r), raw(color.g), raw(color.b)],
+                hit: HitRecord::default(),
+            })
+        };
+    }
+    let codes = [color.r, color.g, color.b].map(|v| {
+        if float {
+            linear_code(v)
+        } else {
+            linear_code_fixed(raw(v))
+        }
+    });
+    let levels = P::LEVELS.expect("a level format");
+    P::from_levels(encode_levels(codes, levels, P::GRAY, e, x, y))
+}
+
+/// Asserts that the encoded pixels of `row` are the encoding rule applied to its linear
+/// colour, and its byte rows the encoded pixels' bytes.
+fn check_encoded(row: &Row, y: u32, what: &str, float: bool) {
+    let e = row.encoding;
+    for (x, c) in row.linear.iter().enumerate() {
+        let (xi, c) = (x as u32, *c);
+        let at = |f: &str| format!("{what}: pixel {x}, {f} {e:?}");
+        assert_eq!(
+            row.enc_rgb888[x],
+            rule::<Rgb888>(c, e, float, xi, y),
+            "{}",
+            at("Rgb888")
+        );
+        assert_eq!(
+            row.enc_rgb565[x],
+            rule::<Rgb565>(c, e, float, xi, y),
+            "{}",
+            at("Rgb565")
+        );
+        assert_eq!(
+            row.enc_bgr565[x],
+            rule::<Bgr565>(c, e, float, xi, y),
+            "{}",
+            at("Bgr565")
+        );
+        assert_eq!(
+            row.enc_gray8[x],
+            rule::<Gray8>(c, e, float, xi, y),
+            "{}",
+            at("Gray8")
+        );
+    }
+    fn bytes<P: BytePixel>(px: &[P]) -> Vec<u8> {
+        px.iter()
+            .flat_map(|p| p.to_bytes().as_ref().to_vec())
+            .collect()
+    }
+    assert_eq!(row.bytes[0], bytes(&row.enc_rgb565), "{what}: RGB565 bytes");
+    assert_eq!(row.bytes[1], bytes(&row.enc_bgr565), "{what}: BGR565 bytes");
+    assert_eq!(row.bytes[2], bytes(&row.enc_rgb888), "{what}: RGB888 bytes");
+    assert_eq!(row.bytes[3], bytes(&row.enc_gray8), "{what}: Gray8 bytes");
+}
+
+/// Asserts what every row `y` of every path must satisfy, whatever the scene: finite,
 /// non-negative linear colour; hit records naming existing spheres and lights, none on
 /// background; the background colour exactly where nothing is hit; 8-bit and 5-6-5 pixels
-/// that are the quantized linear colour.
+/// that are the quantized linear colour; with the row's encoding, every level format equal
+/// to the encoding rule applied to the linear colour, and byte rows equal to those pixels'
+/// bytes.
 ///
 /// `float` is true for the float paths, whose misses carry the background's exact bits; the
 /// fixed path's misses must be within one 8-bit level of the background's pixel.
-pub fn check_row(scene: &FuzzScene, row: &Row, what: &str, float: bool) {
+pub fn check_row(scene: &FuzzScene, row: &Row, y: u32, what: &str, float: bool) {
+    check_encoded(row, y, what, float);
     let spheres = scene.spheres().len();
     let light_bits = if scene.lights().len() >= 32 {
         u32::MAX
@@ -583,7 +802,7 @@ pub fn check_bad_sizes(scene: &FuzzScene, width: u32, height: u32) {
     for (w, h) in [(0, height), (width, 0), (max + 1, height), (width, max + 1)] {
         struct Refused(u32, u32);
         impl PathVisitor for Refused {
-            fn visit<R: Render>(&mut self, name: &'static str, p: Result<R, RenderError>) {
+            fn visit<R: Render + Clone>(&mut self, name: &'static str, p: Result<R, RenderError>) {
                 let (width, height) = (self.0, self.1);
                 match p {
                     Err(e) => assert_eq!(e, RenderError::BadSize { width, height }, "{name}"),

@@ -156,7 +156,12 @@ where
         });
     }
     let threads = threads.max(1);
-    let mut dealt: Vec<Vec<(usize, &mut [T])>> = (0..threads).map(|_| Vec::new()).collect();
+    // Each thread's list of blocks has its final size from the start: the allocations here
+    // are one list per thread whatever the height (tests/rows_alloc.rs counts them).
+    let blocks = frame.len().div_ceil(w * BLOCK_ROWS);
+    let mut dealt: Vec<Vec<(usize, &mut [T])>> = (0..threads)
+        .map(|_| Vec::with_capacity(blocks.div_ceil(threads)))
+        .collect();
     for (block, rows) in frame.chunks_mut(w * BLOCK_ROWS).enumerate() {
         dealt[block % threads].push((block * BLOCK_ROWS, rows));
     }

@@ -186,6 +186,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             spheres: 0,
         };
         for &k in candidates {
+            // Candidates come from the row's spans, one per sphere: always a sphere.
+            debug_assert!((k as usize) < self.spheres.len(), "candidate {k}");
             let Some(s) = self.spheres.get(k as usize) else {
                 continue;
             };
@@ -223,6 +225,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         present: &mut Present,
     ) {
         for &k in candidates {
+            // Candidates come from the row's spans, one per sphere: always a sphere.
+            debug_assert!((k as usize) < self.spheres.len(), "candidate {k}");
             let Some(s) = self.spheres.get(k as usize) else {
                 continue;
             };

@@ -149,7 +149,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 more_lobes: params.weight[1..].iter().any(|&w| w > 0.0),
             };
             // Same capacity as the scene: cannot fail.
-            let _ = spheres.push(p);
+            let pushed = spheres.push(p);
+            debug_assert!(pushed.is_ok(), "more spheres than the scene holds");
         }
         let mut lights = heapless::Vec::new();
         for l in scene.lights() {
@@ -159,7 +160,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     color,
                     intensity,
                 } => PreparedLight::Distant {
-                    to_light: -direction.normalized().unwrap_or_default(),
+                    to_light: {
+                        // Validated: a scene's light direction is finite and not zero.
+                        let unit = direction.normalized();
+                        debug_assert!(unit.is_some(), "light direction {direction:?}");
+                        -unit.unwrap_or_default()
+                    },
                     arriving: Vec3::new(color.r, color.g, color.b).scale(intensity),
                 },
                 Light::Point {
@@ -172,7 +178,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                         .scale(intensity / (4.0 * core::f32::consts::PI)),
                 },
             };
-            let _ = lights.push(p);
+            // Same capacity as the scene: cannot fail.
+            let pushed = lights.push(p);
+            debug_assert!(pushed.is_ok(), "more lights than the scene holds");
         }
         let mut casters = heapless::Vec::new();
         for i in 0..scene.spheres().len() {
@@ -181,7 +189,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 *mask = scene.shadow_casters(i, light);
             }
             // Same capacity as the scene: cannot fail.
-            let _ = casters.push(per_light);
+            let pushed = casters.push(per_light);
+            debug_assert!(pushed.is_ok(), "more caster masks than spheres");
         }
         Ok(Prepared {
             width,

@@ -70,7 +70,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
                 for (k, span) in spans.iter().enumerate() {
                     if let Some(s) = span {
                         if s.start < x1 && x0 < s.end {
-                            let _ = candidates.push(k as u16);
+                            // One span per sphere, so at most S: cannot fail.
+                            let pushed = candidates.push(k as u16);
+                            debug_assert!(pushed.is_ok(), "more candidates than spheres");
                         }
                     }
                 }

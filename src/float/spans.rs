@@ -122,7 +122,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 })
             };
             // Same capacity as the sphere list: cannot fail.
-            let _ = out.push(span);
+            let pushed = out.push(span);
+            debug_assert!(pushed.is_ok(), "more spans than spheres");
         }
         out
     }
