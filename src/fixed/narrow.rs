@@ -13,7 +13,7 @@
 //!
 //! # When it applies
 //!
-//! A frame uses it ([`NarrowView`], made by the prepare) when every light is distant, every
+//! A frame uses it (the prepare's `NarrowView`) when every light is distant, every
 //! sphere uses a classic model (Phong or Blinn-Phong, not normalized), every sphere is more
 //! than `4ε` from each sphere that can shadow it ([`crate::Scene::shadow_casters`]), the
 //! camera is outside every sphere, and the image plane is narrow enough that every primary direction is within
@@ -71,50 +71,16 @@ use super::exact::{shift_saturating, Exact};
 use super::kernel::Shaded;
 use super::mul::{mul_ii, mul_uu};
 use super::pow::{EXP_TABLE, INV_LN2_F31, LOG_TABLE};
-use super::prepare::{FixedLight, PreparedFixed};
+use super::prepare::{FixedLight, NarrowSphere, NarrowView, PreparedFixed};
 use super::vector::{dot_len_unit, each3, length_sq, to_len, Unit, V3};
 use crate::pixel::HitRecord;
 use crate::runs::Span;
 
 /// One, Q15.
 const ONE: i32 = 1 << 15;
-/// The largest error of a component of `R − V` (or `N − H`) where `N·V ≥ 0.3`: `2⁻¹⁰`.
-/// Checked by `tests::narrow_vectors_within_delta` (the largest seen is 26 steps of `2⁻¹⁵`).
-pub(crate) const DELTA: f32 = 1.0 / 1024.0;
 
 /// `N·V` and `|N·L|` below this (0.3, Q15) together hand a pixel over.
 const GRAZING: i32 = 9830;
-
-/// The primary directions of a frame in narrow form: `D = forward + dy·step_y + dx·step_x`
-/// with `dx = 2x + 1 − w` and `dy = h − 2y − 1`, integer vectors with `|D| < 2³⁰`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NarrowView {
-    pub forward: V3<i32>,
-    pub step_x: V3<i32>,
-    pub step_y: V3<i32>,
-}
-
-/// A sphere's narrow constants.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NarrowSphere {
-    /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
-    pub left: u32,
-    /// The high word of the held `w`, shifted right by this, is `w16` (`|w16| < 2¹⁶` on a hit).
-    pub right: u32,
-    /// The radius, raw I16F16.
-    pub radius: u32,
-    /// `2^(L + 15)/r` with `L` the bit length of the raw radius: in `(2¹⁵, 2¹⁶]`.
-    pub gain: u32,
-    /// `w` and `b` per pixel step (`oc × 2·step_x`, held shifted like `w`; `oc·2·step_x`).
-    pub dw: V3<i64>,
-    pub db: i64,
-    /// `1 − r²/(r + ε)²` in Q30: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
-    pub shadow_limit: u32,
-    /// `h` (Q31) from which the lobe is 0.
-    pub cutoff: u32,
-    /// Whether the narrow lobe is within a quarter level wherever it is not 0.
-    pub lobe_everywhere: bool,
-}
 
 /// What the narrow kernel made of a pixel.
 pub(crate) enum Narrow {
@@ -640,6 +606,7 @@ fn narrow_lobe(h: u32, n: Exact) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::fixed::prepare::DELTA;
 
     #[test]
     fn rsqrt_within_one_and_a_half_steps_of_two_to_the_minus_15() {

@@ -13,7 +13,6 @@
 
 use super::exact::Exact;
 use super::mul::mul_ii;
-use super::narrow::{NarrowSphere, NarrowView, DELTA};
 use super::roots::inv_sqrt;
 use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
@@ -38,6 +37,42 @@ pub const MAX_PLANE_SCALE: f32 = 127.0;
 /// Largest `kd·albedo`, `ks`, colour, and distant-light `colour·intensity` per channel:
 /// they are U16F16 and two of them multiply and add without wrapping.
 pub const MAX_LEVEL: f32 = 32_767.0;
+
+/// The narrow kernel's error bound (module `narrow`): the largest error of a component of
+/// `R − V` (or `N − H`) where `N·V ≥ 0.3`, `2⁻¹⁰`. Checked by the narrow module's
+/// `narrow_vectors_within_delta` (the largest seen is 26 steps of `2⁻¹⁵`).
+pub(crate) const DELTA: f32 = 1.0 / 1024.0;
+
+/// The primary directions of a frame in narrow form: `D = forward + dy·step_y + dx·step_x`
+/// with `dx = 2x + 1 − w` and `dy = h − 2y − 1`, integer vectors with `|D| < 2³⁰`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NarrowView {
+    pub forward: V3<i32>,
+    pub step_x: V3<i32>,
+    pub step_y: V3<i32>,
+}
+
+/// A sphere's narrow constants.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NarrowSphere {
+    /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
+    pub left: u32,
+    /// The high word of the held `w`, shifted right by this, is `w16` (`|w16| < 2¹⁶` on a hit).
+    pub right: u32,
+    /// The radius, raw I16F16.
+    pub radius: u32,
+    /// `2^(L + 15)/r` with `L` the bit length of the raw radius: in `(2¹⁵, 2¹⁶]`.
+    pub gain: u32,
+    /// `w` and `b` per pixel step (`oc × 2·step_x`, held shifted like `w`; `oc·2·step_x`).
+    pub dw: V3<i64>,
+    pub db: i64,
+    /// `1 − r²/(r + ε)²` in Q30: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
+    pub shadow_limit: u32,
+    /// `h` (Q31) from which the lobe is 0.
+    pub cutoff: u32,
+    /// Whether the narrow lobe is within a quarter level wherever it is not 0.
+    pub lobe_everywhere: bool,
+}
 
 /// A sphere's per-frame constants, in scaled units.
 #[derive(Clone, Copy, Debug)]
