@@ -1385,7 +1385,9 @@ fn row_tangent_to_a_sphere_keeps_its_span() {
         assert_eq!(render(&spans, y).hits[x as usize], want, "{w}x{h}");
         let (a, b) = (render(&spans, y), render(&naive, y));
         assert!(bits(&a) == bits(&b) && a.hits == b.hits, "{w}x{h}");
-        rows(&s, w, h, &[y]);
+        // The ray grazes the sphere: which side of the tangent the fixed path's rounding
+        // puts it is ill-conditioned, so the fixed path is only required to render.
+        rows_checked(&s, w, h, &[y], Fixed::Renders);
     }
 }
 
