@@ -22,8 +22,8 @@ use embedded_graphics_core::prelude::{DrawTarget, OriginDimensions, Pixel, Size}
 use embedded_graphics_core::Drawable;
 use shadeline::eg::Drawing;
 use shadeline::{
-    exponent_series_with_capacity, materials, Bgr565, Encoding, Gray8, HitRecord, LinearRgb, Prepared,
-    PreparedFixed, Render, Rgb565, Rgb888, Scalar, Scene, Simd4, Simd8,
+    exponent_series_with_capacity, materials_with_capacity, Bgr565, Encoding, Gray8, HitRecord,
+    LinearRgb, Prepared, PreparedFixed, Render, Rgb565, Rgb888, Scalar, Scene, Simd4, Simd8,
 };
 
 /// The scene every prepared frame below is made from.
@@ -45,7 +45,7 @@ pub fn shadeline_prepare_simd(
     four: &mut Option<Frame<Simd4>>,
     eight: &mut Option<Frame<Simd8>>,
 ) {
-    let scene: Option<Scene<16, 4>> = materials().ok();
+    let scene: Option<Scene<16, 4>> = materials_with_capacity().ok();
     *four = scene.as_ref().and_then(|s| Prepared::new(s, w, h).ok());
     *eight = scene.as_ref().and_then(|s| Prepared::new(s, w, h).ok());
 }
@@ -53,7 +53,7 @@ pub fn shadeline_prepare_simd(
 /// The materials gallery, prepared for the fixed path.
 #[no_mangle]
 pub fn shadeline_prepare_fixed(w: u32, h: u32, out: &mut Option<PreparedFixed<16, 4>>) {
-    *out = materials()
+    *out = materials_with_capacity()
         .ok()
         .and_then(|s: Scene<16, 4>| PreparedFixed::new(&s, w, h).ok());
 }
