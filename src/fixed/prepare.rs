@@ -395,11 +395,22 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return;
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
-        let narrow = |v: V3<I16F48>| v.map(|c| ((c.to_bits() + (1 << 18)) >> 19) as i32);
+        let narrow = |v: V3<I16F48>| v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19);
+        // Steps below 2²⁸ (so `2·step` fits; a one-pixel-wide image leaves `step_x` unbounded
+        // by the corner test below).
+        let fits = |v: [i64; 3]| v.iter().all(|c| c.unsigned_abs() < 1 << 28);
+        let (forward, step_x, step_y) = (
+            narrow(self.forward),
+            narrow(self.step_x),
+            narrow(self.step_y),
+        );
+        if !(fits(step_x) && fits(step_y) && forward.iter().all(|c| c.unsigned_abs() < 1 << 30)) {
+            return;
+        }
         let view = NarrowView {
-            forward: narrow(self.forward),
-            step_x: narrow(self.step_x),
-            step_y: narrow(self.step_y),
+            forward: forward.map(|c| c as i32),
+            step_x: step_x.map(|c| c as i32),
+            step_y: step_y.map(|c| c as i32),
         };
         // Every direction within √2 of the central one in length (the corners are the
         // longest): then |D| < 2³⁰ and every narrow format holds.
