@@ -98,23 +98,7 @@ fn extreme_model() -> impl Strategy<Value = Model> {
         }),
         prop::sample::select(Metal::ALL.to_vec()).prop_map(Surface::Metal),
     ];
-    (0u8..5, surface, lobe(), lobe(), 0usize..=2).prop_map(|(kind, surface, a, b, count)| {
-        let mut more_lobes = [Lobe::NONE; MORE_LOBES];
-        for (slot, l) in more_lobes.iter_mut().zip([a, b]).take(count) {
-            *slot = l;
-        }
-        let spec = Specular {
-            surface,
-            more_lobes,
-        };
-        match kind {
-            0 => Model::Phong,
-            1 => Model::BlinnPhong,
-            2 => Model::Lambert,
-            3 => Model::NormalizedPhong(spec),
-            _ => Model::NormalizedBlinnPhong(spec),
-        }
-    })
+    model_from(surface, lobe().boxed())
 }
 
 /// Scenes at the edges of what the scene model accepts.

@@ -281,6 +281,15 @@ pub fn any_model() -> impl Strategy<Value = Model> {
         (1.01f32..3.0).prop_map(|ior| Surface::Dielectric { ior: Some(ior) }),
         prop::sample::select(Metal::ALL.to_vec()).prop_map(Surface::Metal),
     ];
+    model_from(surface, lobe)
+}
+
+/// Any of the five models from a surface strategy and a lobe strategy: the classic models,
+/// Lambert, or a normalized model with that surface and zero to two more lobes.
+pub fn model_from(
+    surface: impl Strategy<Value = Surface>,
+    lobe: impl Strategy<Value = Lobe> + Clone,
+) -> impl Strategy<Value = Model> {
     let lobes = (0usize..=2, lobe.clone(), lobe).prop_map(|(count, a, b)| {
         let mut more = [Lobe::NONE; MORE_LOBES];
         for (slot, l) in more.iter_mut().zip([a, b]).take(count) {
