@@ -225,7 +225,8 @@ mod tests {
         let out = &mut out[..len];
         let mut seen = heapless::Vec::new();
         walk_runs(out, seg_start, runs, &background, |x, px| {
-            let _ = seen.push((x, px.len()));
+            seen.push((x, px.len()))
+                .expect("more runs than the test's capacity");
             for (p, x) in px.iter_mut().zip(x..) {
                 *p = Gray8(100 + x as u8);
             }

@@ -225,6 +225,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// sphere `k`; spheres from index 32 on are always tested), prepared per frame.
     #[inline(always)]
     pub(crate) fn casters(&self, index: usize, light: usize) -> u32 {
+        debug_assert!(index < self.casters.len(), "casters of sphere {index}");
+        debug_assert!(light < self.lights.len(), "casters for light {light}");
         self.casters
             .get(index)
             .and_then(|c| c.get(light))

@@ -163,6 +163,7 @@ pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
 /// `2³¹/√m` for `m` in `[2³⁰, 2³²)`, within `1.5·2⁻¹⁵` relative (in about `[2¹⁵, 2¹⁶]`).
 #[inline(always)]
 fn rsqrt_normalized(m: u32) -> u32 {
+    debug_assert!(m >= 1 << 30, "m = {m:#x} is not normalized");
     let y0 = RSQRT_TABLE
         .get(((m >> 24) as usize).saturating_sub(64))
         .copied()
@@ -344,7 +345,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
         let mut best: Option<Hit> = None;
         for i in 0..run.tracks.len() {
-            let Some(t) = run.tracks.get(i) else {
+            let t = run.tracks.get(i);
+            debug_assert!(t.is_some(), "track {i} of {}", run.tracks.len());
+            let Some(t) = t else {
                 continue;
             };
             if !(t.span.start <= x && x < t.span.end) || t.b >= 0 {
@@ -407,6 +410,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(always)]
     fn narrow_lights(&self, surface: &Surface, record_hits: bool) -> Narrow {
         let Surface { index, dh, n, nv } = *surface;
+        debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
         let Some(sphere) = self.spheres.get(index) else {
             return Narrow::Done(None);
         };
@@ -498,6 +502,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         to_light: V3<Unit>,
         casters: u32,
     ) -> bool {
+        debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
         let Some(own) = self.spheres.get(index) else {
             return false;
         };
@@ -524,11 +529,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// `t` of a hit in raw I16F16, for choosing the nearer of two: `−b/|D| − r·(N·V)`.
     #[inline(always)]
     fn narrow_t(&self, hit: &Hit, sigma: i32) -> i64 {
-        let radius = self
-            .spheres
-            .get(hit.index)
-            .and_then(|s| s.narrow.as_ref())
-            .map_or(0, |n| n.radius);
+        let narrow = self.spheres.get(hit.index).and_then(|s| s.narrow.as_ref());
+        // Only frames whose every sphere has narrow data take the narrow kernel.
+        debug_assert!(narrow.is_some(), "sphere {} has no narrow data", hit.index);
+        let radius = narrow.map_or(0, |n| n.radius);
         // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): |b| < 2⁶¹, so (−b) >> 30 fits 31 bits.
         let along = (mul_uu(((-hit.b) >> 30) as u32, sigma as u32) >> 14) as i64;
         along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
@@ -596,6 +600,7 @@ fn narrow_lobe(h: u32, n: Exact) -> u32 {
         return 0;
     }
     let f = y & 0xffff;
+    debug_assert!(((f >> 10) as usize) < EXP_TABLE.len());
     let base = EXP_TABLE.get((f >> 10) as usize).copied().unwrap_or(0) >> 15; // Q16, ≤ 2¹⁶
     let a = ((f & 1023) * 45_426) >> 16; // r·ln 2 in Q16, < 2¹⁰
     let e = (1 << 16) - a + ((a * a) >> 17); // e^(−a), Q16

@@ -127,6 +127,7 @@ fn neg_log2_table(h: u64) -> (u32, i32) {
     let xn = x << xz; // m·2⁶³, m in [1, 2); x = m·2^(2 − xz)
     let m = xn >> 32; // U1F31
     let bin = ((xn >> 57) & 63) as usize;
+    debug_assert!(bin < LOG_TABLE.len());
     let (inv_m0, log2_m0) = LOG_TABLE.get(bin).copied().unwrap_or((1 << 31, 0));
     // δ = m/m₀ − 1 in [0, 2⁻⁶), signed F31 (rounding of 1/m₀ may make it −1 ulp).
     let delta = (mul(m, inv_m0 as u64) >> 31) as i64 - ONE_F31 as i64;
@@ -178,6 +179,7 @@ fn exp2_neg(y: u32) -> u32 {
     t = HALF_F31 - (mul(a, t) >> 31);
     t = ONE_F31 - (mul(a, t) >> 31);
     let e = ONE_F31 - (mul(a, t) >> 31);
+    debug_assert!(bin < EXP_TABLE.len(), "exponent bin {bin}");
     let base = EXP_TABLE.get(bin).copied().unwrap_or(0) as u64;
     let v = (mul(base, e) + (1 << 30)) >> 31; // ≤ 2³¹
     let v = if k == 0 { v } else { (v + (1 << (k - 1))) >> k };

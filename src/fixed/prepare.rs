@@ -281,7 +281,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 narrow: None,
             };
             // Same capacity as the scene: cannot fail.
-            let _ = spheres.push(sphere);
+            let pushed = spheres.push(sphere);
+            debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
         }
 
         let mut lights = heapless::Vec::new();
@@ -295,7 +296,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 } => {
                     to_levels([color.r, color.g, color.b], item, "color")?;
                     let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
-                    let d = (-direction).normalized().unwrap_or_default();
+                    // Validated: a scene's light direction is finite and not zero.
+                    let d = (-direction).normalized();
+                    debug_assert!(d.is_some(), "light direction {direction:?}");
+                    let d = d.unwrap_or_default();
                     // `saturating_from_num` panics on NaN; this is the same saturation for
                     // every other input, with no panic path for the firmware's link proof.
                     let d = [d.x, d.y, d.z].map(|c| {
@@ -329,7 +333,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     }
                 }
             };
-            let _ = lights.push(light);
+            // Same capacity as the scene: cannot fail.
+            let pushed = lights.push(light);
+            debug_assert!(pushed.is_ok(), "light {i} beyond the prepared capacity");
         }
 
         let mut casters = heapless::Vec::new();
@@ -339,7 +345,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 *mask = scene.shadow_casters(i, light);
             }
             // Same capacity as the scene: cannot fail.
-            let _ = casters.push(per_light);
+            let pushed = casters.push(per_light);
+            debug_assert!(
+                pushed.is_ok(),
+                "casters of sphere {i} beyond the prepared capacity"
+            );
         }
 
         let bg = scene.background();

@@ -81,6 +81,7 @@ fn top_bits(x: u64) -> (u32, u32) {
 #[inline(always)]
 fn initial(u: u32) -> u32 {
     let bin = ((u >> 24) as usize).saturating_sub(64);
+    debug_assert!(bin < INV_SQRT_TABLE.len(), "u = {u:#x} is not in [1, 4)");
     INV_SQRT_TABLE.get(bin).copied().unwrap_or(1 << 30)
 }
 

@@ -36,7 +36,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             };
             // Same capacity as the sphere list: cannot fail. (Not `collect`: heapless's
             // `FromIterator` panics on overflow, and a panic path would stay in the binary.)
-            let _ = out.push(span);
+            let pushed = out.push(span);
+            debug_assert!(pushed.is_ok(), "more spans than spheres");
         }
         out
     }
