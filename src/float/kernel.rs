@@ -347,8 +347,14 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 continue;
             }
             let oc = surface.shadow_origin - Vec3::splat(s.center);
-            let (t, hit, _) = nearest_hit(oc, light.to_light, W::Lane::splat(s.radius_sq), eps);
-            blocked = W::Lane::or(blocked, W::Lane::and(hit, t.lt(light.t_max)));
+            let hit = meets(
+                oc,
+                light.to_light,
+                W::Lane::splat(s.radius_sq),
+                eps,
+                light.t_max,
+            );
+            blocked = W::Lane::or(blocked, hit);
             if !W::Lane::any(W::Lane::and_not(surface.any_hit, blocked)) {
                 break;
             }
@@ -482,11 +488,54 @@ pub(crate) fn nearest_hit<T: Lane>(
     let f = oc - dir * b;
     let disc = radius_sq - f.dot(f);
     let zero = T::splat(0.0);
+    let touches = zero.le(disc);
+    if !T::any(touches) {
+        // No lane meets the sphere: skip the square root (the mask is all false, so the
+        // caller reads neither `t` nor `offset`).
+        return (zero, touches, f);
+    }
     let root = disc.max(zero).sqrt();
     let t_near = -b - root;
     let t_far = -b + root;
     let near = eps.lt(t_near);
     let t = T::select(near, t_near, t_far);
     let offset = f + dir * T::select(near, -root, root);
-    (t, T::and(zero.le(disc), eps.lt(t)), offset)
+    (t, T::and(touches, eps.lt(t)), offset)
+}
+
+/// Whether the ray `origin + t·dir` (`dir` unit, `oc = origin − center`) meets the sphere at
+/// some `ε < t < t_max`: the shadow test. It decides from the signs and squares of
+/// `b = oc·dir`, `disc = r² − |oc − b·dir|²` and the bounds, with no square root, by
+///
+/// | condition | holds exactly when |
+/// |---|---|
+/// | `t_near = −b − √disc > ε` | `b + ε < 0` and `disc < (b + ε)²` |
+/// | `t_far = −b + √disc > ε` | `b + ε < 0` or `disc > (b + ε)²` |
+/// | `t_near < t_max` | `b + t_max > 0` or `disc > (b + t_max)²` |
+/// | `t_far < t_max` | `b + t_max > 0` and `disc < (b + t_max)²` |
+///
+/// and takes, as [`nearest_hit`] does, the near root when it lies beyond `ε` and the far
+/// root otherwise. A square that overflows to infinity keeps every line of the table true
+/// to its left side (`t_max = f32::MAX` for distant lights gives `t < t_max` always).
+#[inline(always)]
+pub(crate) fn meets<T: Lane>(oc: Vec3<T>, dir: Vec3<T>, radius_sq: T, eps: T, t_max: T) -> T::Mask {
+    let b = oc.dot(dir);
+    let f = oc - dir * b;
+    let disc = radius_sq - f.dot(f);
+    let zero = T::splat(0.0);
+    let touches = zero.le(disc);
+    if !T::any(touches) {
+        return touches;
+    }
+    let be = b + eps;
+    let be2 = be * be;
+    let near = T::and(be.lt(zero), disc.lt(be2));
+    let far = T::or(be.lt(zero), be2.lt(disc));
+    let bm = b + t_max;
+    let bm2 = bm * bm;
+    let near_before = T::or(zero.lt(bm), bm2.lt(disc));
+    let far_before = T::and(zero.lt(bm), disc.lt(bm2));
+    let by_near = T::and(near, near_before);
+    let by_far = T::and(T::and_not(far, near), far_before);
+    T::and(touches, T::or(by_near, by_far))
 }
