@@ -20,3 +20,11 @@ pub const SCALAR_RGB565_CRC32: u32 = 0xf181_5799;
 /// golden value of `tests/fixed_golden.rs` (`GOLDEN_EXPONENT_SERIES_320X240`). Integer
 /// arithmetic only, so the same bits on every target.
 pub const FIXED_RGB565_CRC32: u32 = 0xfa28_d6fb;
+
+/// Pixels of that frame whose primary ray hits a sphere on the scalar path: the `covered=`
+/// figure, and its per-covered-pixel ratio, of the firmware that do not count on target.
+pub const SCALAR_COVERED: u64 = 11_840;
+
+/// Pixels of that frame whose primary ray hits a sphere on the fixed path (its ray
+/// decisions differ from the scalar path's at one silhouette pixel).
+pub const FIXED_COVERED: u64 = 11_839;

@@ -4,7 +4,7 @@
 //! value is also `tests/fixed_golden.rs`'s golden; both tests failing together is the sign of
 //! a deliberate change to the fixed kernel.
 
-use shadeline::{exponent_series, Prepared, PreparedFixed, Render, Rgb565, Scalar};
+use shadeline::{exponent_series, HitRecord, Prepared, PreparedFixed, Render, Rgb565, Scalar};
 
 mod expected {
     include!("../firmware/expected.rs");
@@ -55,5 +55,24 @@ fn fixed_crc_matches_the_firmware_constant() {
         crc,
         expected::FIXED_RGB565_CRC32,
         "host fixed CRC is {crc:#010x}: update firmware/expected.rs (and tests/fixed_golden.rs)"
+    );
+}
+
+/// Pixels whose primary ray hits a sphere, from the path's own hit records.
+fn covered<R: Render>(path: &R) -> u64 {
+    let mut hits = vec![HitRecord::default(); (path.width() * path.height()) as usize];
+    path.render_frame(&mut hits).expect("frame renders");
+    hits.iter().filter(|h| h.sphere.is_some()).count() as u64
+}
+
+#[test]
+fn covered_counts_match_the_firmware_constants() {
+    let scene = exponent_series().expect("built-in scene is valid");
+    let scalar = Prepared::<Scalar>::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
+    let fixed = PreparedFixed::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
+    assert_eq!(
+        (covered(&scalar), covered(&fixed)),
+        (expected::SCALAR_COVERED, expected::FIXED_COVERED),
+        "host covered counts (scalar, fixed): update firmware/expected.rs"
     );
 }

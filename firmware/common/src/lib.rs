@@ -31,4 +31,4 @@ pub mod expected {
 }
 
 pub use meter::{InstructionCounter, Meter};
-pub use run::{Board, Outcome, Session, Sink};
+pub use run::{Board, Expected, Outcome, Session, Sink};

@@ -7,13 +7,20 @@
 //! `prepare=` figure of the path's line, measured exactly like a row.
 //!
 //! The order keeps everything that is not the render out of the measured regions: the
-//! covered-pixel count renders the frame once more into [`HitRecord`]s, a short segment at a
-//! time, and is never measured; the CRC is taken after each measured row (streaming) or
+//! covered-pixel count (with the `count-covered` feature) renders the frame once more into
+//! [`HitRecord`]s, a short segment at a time, and is never measured; the CRC is taken after each measured row (streaming) or
 //! after the frame (framebuffer); the report is formatted after everything. Each measured
 //! region is exactly one `render_line` call, so "instructions per frame" means the same
 //! thing whether rows go to a framebuffer or to a line buffer, on every board. The stack of
 //! every stage (build, count, render) is painted and counts toward the session's
 //! `peak_stack`.
+//!
+//! Rendering into hit records is a second monomorphization of the row loop, several KiB of
+//! flash that a user's firmware, which renders pixels only, never carries. So the count is a
+//! feature: the m4f and rv32 firmware count on target and fail if the count differs from the
+//! host's ([`Expected::covered`], checked on the host by `tests/firmware_crcs.rs`); the m0
+//! firmware, whose flash is a budgeted figure, reports the host's count
+//! (`covered_by=host`) and links only what a user's firmware would.
 //!
 //! The report is one line of `key=value` fields after a `shadeline-fw` tag, which
 //! `.ci/firmware` parses into the figures table:
@@ -28,7 +35,9 @@ use crate::crc32::Crc32;
 use crate::meter::{InstructionCounter, Meter};
 use crate::stack;
 use crate::text::Line;
-use shadeline::{HitRecord, Render, Rgb565};
+#[cfg(feature = "count-covered")]
+use shadeline::HitRecord;
+use shadeline::{Render, Rgb565};
 
 /// What a firmware supplies about its board.
 pub trait Board {
@@ -59,6 +68,18 @@ impl Sink<'_> {
         }
     }
 }
+
+/// What a path must produce: the host's figures for the same frame (`expected.rs`).
+#[derive(Clone, Copy, Debug)]
+pub struct Expected {
+    /// CRC32 of the frame's RGB565 pixels.
+    pub crc: u32,
+    /// Pixels whose primary ray hits a sphere.
+    pub covered: u64,
+}
+
+/// Whether this build counts covered pixels on target (the `count-covered` feature).
+const COUNT_COVERED: bool = cfg!(feature = "count-covered");
 
 /// The verdict of a whole session.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -152,16 +173,20 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         path: &R,
         mut sink: Sink<'_>,
         prepare: Option<u64>,
-        expected: u32,
+        expected: Expected,
     ) {
         let sink_name = sink.name();
         let board_name = self.board.name();
-        let figures = self.figures(path, &mut sink);
+        let figures = self.figures(path, &mut sink, expected.covered);
         if prepare.is_none() {
             self.outcome = Outcome::Fail;
         }
         let pixels = u64::from(path.width()) * u64::from(path.height());
-        let matched = figures.render_ok && figures.crc == expected;
+        let matched = figures.render_ok && figures.crc == expected.crc;
+        let covered_matched = figures.covered == expected.covered;
+        if !covered_matched {
+            self.outcome = Outcome::Fail;
+        }
         if !matched || figures.instructions.is_none() {
             self.outcome = Outcome::Fail;
         }
@@ -175,7 +200,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
             .str(" crc=")
             .hex32(figures.crc)
             .str(" expected=")
-            .hex32(expected)
+            .hex32(expected.crc)
             .str(if matched { " match=yes" } else { " match=no" });
         match figures.instructions {
             Some(n) => {
@@ -185,7 +210,15 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
                     .ratio(n, pixels)
                     .field("covered", figures.covered)
                     .str(" per_covered=")
-                    .ratio(n, figures.covered);
+                    .ratio(n, figures.covered)
+                    .str(if COUNT_COVERED {
+                        " covered_by=target"
+                    } else {
+                        " covered_by=host"
+                    });
+                if !covered_matched {
+                    line.field("covered_expected", expected.covered);
+                }
             }
             None => {
                 line.str(" instructions=unknown");
@@ -227,7 +260,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         self.outcome = Outcome::Fail;
     }
 
-    fn figures<R: Render>(&mut self, path: &R, sink: &mut Sink<'_>) -> Figures {
+    fn figures<R: Render>(&mut self, path: &R, sink: &mut Sink<'_>, host_covered: u64) -> Figures {
         let (lowest, top) = self.board.stack_limits();
         if self.board.stack_pointer() < lowest + stack::GUARD {
             // Already below the stack's limit: painting would hit live data, and any figure
@@ -237,9 +270,16 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         }
 
         // Covered pixels: not measured, but its stack counts toward the session's peak.
-        let paint_top = self.paint();
-        let covered = count_covered(path);
-        self.note_stack(lowest, paint_top, top);
+        #[cfg(feature = "count-covered")]
+        let covered = {
+            let _ = host_covered;
+            let paint_top = self.paint();
+            let covered = count_covered(path);
+            self.note_stack(lowest, paint_top, top);
+            covered
+        };
+        #[cfg(not(feature = "count-covered"))]
+        let covered = host_covered;
 
         let paint_top = self.paint();
         let (render_ok, instructions, crc) = match sink {
@@ -324,11 +364,13 @@ fn render_streamed<C: InstructionCounter, R: Render>(
 }
 
 /// Hit records per segment of [`count_covered`]: 256 bytes of stack.
+#[cfg(feature = "count-covered")]
 const COVER_SEGMENT: usize = 32;
 
 /// Pixels whose primary ray hits a sphere, found by rendering each row's coverage into hit
 /// records one short segment at a time (a pixel does not depend on how a row is cut), so
 /// the count needs no row-long buffer.
+#[cfg(feature = "count-covered")]
 #[inline(never)]
 fn count_covered<R: Render>(path: &R) -> u64 {
     let mut hits = [HitRecord::default(); COVER_SEGMENT];

@@ -6,8 +6,9 @@
 //!
 //! What has to fit in the 16 KiB: the scene, the prepared frame and the 640-byte line buffer
 //! (all three `static`: each is built in place and never moved), and the stack of the
-//! deepest stage — building the scene, preparing the frame, counting covered pixels (a few
-//! hit records at a time) or rendering a row. The report's `peak_stack` plus `llvm-size`'s
+//! deepest stage — building the scene, preparing the frame or rendering a row. It does not
+//! count covered pixels itself (that would link a second row loop, into hit records, that no
+//! user's firmware has): its `covered=` is the host's count from `expected.rs`. The report's `peak_stack` plus `llvm-size`'s
 //! `.data + .bss` is the RAM it needs.
 //!
 //! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
@@ -18,8 +19,8 @@
 
 use common::cortex_m_board::{exit, CortexMBoard, SysTickCounter};
 use common::expected::HEIGHT;
-use common::expected::{FIXED_RGB565_CRC32, WIDTH};
-use common::{Outcome, Session, Sink};
+use common::expected::{FIXED_COVERED, FIXED_RGB565_CRC32, WIDTH};
+use common::{Expected, Outcome, Session, Sink};
 use cortex_m_rt::entry;
 use shadeline::{exponent_series_with_capacity, PreparedFixed, Rgb565, Scene};
 
@@ -51,9 +52,16 @@ fn main() -> ! {
         exit(false)
     };
     match session.build(FIXED, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
-        (Some(path), prepare) => {
-            session.run("fixed", path, Sink::Line(LINE), prepare, FIXED_RGB565_CRC32)
-        }
+        (Some(path), prepare) => session.run(
+            "fixed",
+            path,
+            Sink::Line(LINE),
+            prepare,
+            Expected {
+                crc: FIXED_RGB565_CRC32,
+                covered: FIXED_COVERED,
+            },
+        ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
             session.fail();

@@ -10,8 +10,10 @@
 #![no_main]
 
 use common::cortex_m_board::{exit, CortexMBoard, SysTickCounter};
-use common::expected::{FIXED_RGB565_CRC32, HEIGHT, SCALAR_RGB565_CRC32, WIDTH};
-use common::{Outcome, Session, Sink};
+use common::expected::{
+    FIXED_COVERED, FIXED_RGB565_CRC32, HEIGHT, SCALAR_COVERED, SCALAR_RGB565_CRC32, WIDTH,
+};
+use common::{Expected, Outcome, Session, Sink};
 use cortex_m_rt::entry;
 use shadeline::{exponent_series, Prepared, PreparedFixed, Rgb565, Scalar, Scene};
 
@@ -47,7 +49,10 @@ fn main() -> ! {
             path,
             Sink::Frame(FRAME),
             prepare,
-            SCALAR_RGB565_CRC32,
+            Expected {
+                crc: SCALAR_RGB565_CRC32,
+                covered: SCALAR_COVERED,
+            },
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-scalar\n");
@@ -60,7 +65,10 @@ fn main() -> ! {
             path,
             Sink::Frame(FRAME),
             prepare,
-            FIXED_RGB565_CRC32,
+            Expected {
+                crc: FIXED_RGB565_CRC32,
+                covered: FIXED_COVERED,
+            },
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");

@@ -13,8 +13,10 @@
 mod board;
 
 use board::{exit, Minstret, Rv32Board};
-use common::expected::{FIXED_RGB565_CRC32, HEIGHT, SCALAR_RGB565_CRC32, WIDTH};
-use common::{Outcome, Session, Sink};
+use common::expected::{
+    FIXED_COVERED, FIXED_RGB565_CRC32, HEIGHT, SCALAR_COVERED, SCALAR_RGB565_CRC32, WIDTH,
+};
+use common::{Expected, Outcome, Session, Sink};
 use riscv_rt::entry;
 use shadeline::{exponent_series, Prepared, PreparedFixed, Rgb565, Scalar, Scene};
 
@@ -49,7 +51,10 @@ fn main() -> ! {
             path,
             Sink::Frame(frame),
             prepare,
-            SCALAR_RGB565_CRC32,
+            Expected {
+                crc: SCALAR_RGB565_CRC32,
+                covered: SCALAR_COVERED,
+            },
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-scalar\n");
@@ -62,7 +67,10 @@ fn main() -> ! {
             path,
             Sink::Frame(frame),
             prepare,
-            FIXED_RGB565_CRC32,
+            Expected {
+                crc: FIXED_RGB565_CRC32,
+                covered: FIXED_COVERED,
+            },
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
