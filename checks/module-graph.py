@@ -2,7 +2,9 @@
 """The module graph of the core crate: which module of src/ uses which, read from the
 `crate::` and `super::` paths in its code (comments and unit tests left out; an item
 re-exported at the crate root counts as a use of its module). Prints the graph and exits
-with 1 if it has a cycle, between top-level modules or between files of one folder.
+with 1 if it has a cycle, between top-level modules or between files of one folder; if a
+module uses one of a later layer than its own (the layers of src/lib.rs's "Layout"); or if
+the f64 reference uses the kernels' code (`brdf`, `float`, `fixed`, `runs`, `real`).
 
 Usage: python3 checks/module-graph.py [src]"""
 import re, sys, pathlib
@@ -63,7 +65,29 @@ def find_cycle(g):
             c = dfs(u, [])
             if c: return c
     return None
+# The layers of src/lib.rs's "Layout": each module uses only its own layer and earlier ones.
+LAYERS = [
+    {'real', 'vec3', 'encoding', 'pixel'},
+    {'scene'},
+    {'brdf'},
+    {'render', 'runs'},
+    {'float', 'fixed'},
+    {'eg'},
+    {'presets', 'reference'},
+]
+layer_of = {m: i for i, layer in enumerate(LAYERS) for m in layer}
+# The reference is independent of the kernels: none of their code, formulas or numbers.
+KERNELS = {'brdf', 'float', 'fixed', 'runs', 'real'}
 ok = True
+for t in sorted(top_edges):
+    if t not in layer_of:
+        print(f'module {t} is in no layer of src/lib.rs\'s Layout'); ok = False
+        continue
+    for d in sorted(top_edges[t]):
+        if d in layer_of and layer_of[d] > layer_of[t]:
+            print(f'layer order: {t} (layer {layer_of[t] + 1}) uses {d} (layer {layer_of[d] + 1})'); ok = False
+for d in sorted(top_edges.get('reference', set()) & KERNELS):
+    print(f'the reference uses the kernels\' module {d}'); ok = False
 for name, g in (('modules', top_edges), ('files', edges)):
     c = find_cycle(g)
     if c:

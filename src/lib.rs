@@ -97,8 +97,8 @@
 //!
 //! ## Layout
 //!
-//! The modules form layers; each uses only the layers before it (checked in CI by
-//! `checks/module-graph.py`):
+//! The modules form layers; each uses only its own layer and the ones before it (checked in
+//! CI by `checks/module-graph.py`):
 //!
 //! 1. numbers and pixels: [`real`] (the numeric trait), [`Vec3`], [`encoding`] (every
 //!    rounding rule), [`pixel`] (formats and packing);

@@ -323,3 +323,64 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
         "sphere 3: `radius` does not fit the fixed-point path's number formats"
     );
 }
+
+/// `scene` in units `2^j` times as large: every coordinate and radius scaled, point lights'
+/// intensities by `4^j` so that the light arriving at the scaled surfaces is the same.
+fn scaled<const S: usize, const L: usize>(scene: &Scene<S, L>, j: i32) -> Scene<S, L> {
+    let f = 2f32.powi(j);
+    let c = scene.camera();
+    let camera = Camera {
+        position: c.position.scale(f),
+        look_at: c.look_at.scale(f),
+        ..*c
+    };
+    let mut out = Scene::new(camera, scene.background()).unwrap();
+    for s in scene.spheres() {
+        out.add_sphere(Sphere {
+            center: s.center.scale(f),
+            radius: s.radius * f,
+            material: s.material,
+        })
+        .unwrap();
+    }
+    for l in scene.lights() {
+        out.add_light(match *l {
+            Light::Point {
+                position,
+                color,
+                intensity,
+            } => Light::Point {
+                position: position.scale(f),
+                color,
+                intensity: intensity * f * f,
+            },
+            distant => distant,
+        })
+        .unwrap();
+    }
+    out
+}
+
+/// The module docs' scaling: prepare brings every scene to the same extent by a power of
+/// two (and scales the point lights' power and the ray epsilon with it), so the fixed
+/// formats get the same precision whatever the units: the same scene in other units is
+/// the same frame, bit for bit, hit records included.
+#[test]
+fn the_units_of_a_scene_change_no_bit_of_the_fixed_frame() {
+    let series = exponent_series().unwrap();
+    let want: Vec<Raw> = frame(&PreparedFixed::new(&series, 160, 120).unwrap());
+    for j in [-3, -1, 1, 4, 10] {
+        let got: Vec<Raw> = frame(&PreparedFixed::new(&scaled(&series, j), 160, 120).unwrap());
+        assert!(got == want, "exponent series in units of 2^{j}");
+    }
+    let lamps = point_lights_blinn_phong().unwrap();
+    let want: Vec<Raw> = frame(&PreparedFixed::new(&lamps, 160, 120).unwrap());
+    assert!(
+        want.iter().any(|p| p.0.hit.shadowed != 0),
+        "no shadow in the frame"
+    );
+    for j in [-7, -3, 2, 6, 12] {
+        let got: Vec<Raw> = frame(&PreparedFixed::new(&scaled(&lamps, j), 160, 120).unwrap());
+        assert!(got == want, "point-light scene in units of 2^{j}");
+    }
+}

@@ -13,9 +13,10 @@
 //!
 //! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
 //! 768×432). Without a scene file or preset both use the built-in exponent series (the numbers of
-//! `scenes/exponent-series.toml`, 1024×747). A bad scene file, size or path is reported as
-//! one line `FILE:LINE:COL: error: …` on stderr, with exit code 2, and so is a frame too
-//! large for the memory (the message names its size; buffers are allocated fallibly). The
+//! `scenes/exponent-series.toml`, 1024×747). A bad scene file is reported as one line
+//! `FILE:LINE:COL: error: …` on stderr, with exit code 2; so is a bad size or a frame too
+//! large for the memory, as one `error: …` line (the message names the size; buffers are
+//! allocated fallibly), and an unknown `--path` is an `error:` naming it, exit code 2. The
 //! output file is opened before rendering: an output that cannot be written is exit code 1,
 //! before the render rather than after it.
 

@@ -360,3 +360,43 @@ fn compare_prints_one_row_per_path_and_writes_the_picture() {
     let (w, h, ..) = read_png(&dir.join("compare.png"));
     assert_eq!((w, h), (40 * (paths.len() as u32 + 1), 30 * 2));
 }
+
+#[test]
+fn without_a_scene_the_exponent_series_and_the_presets_render_at_their_files_sizes() {
+    let dir = temp_dir("defaults");
+    let scenes = concat!(env!("CARGO_MANIFEST_DIR"), "/../scenes/");
+    for (args, file, size) in [
+        (
+            &["render"][..],
+            "exponent-series.toml",
+            shadeline::EXPONENT_SERIES_SIZE,
+        ),
+        (
+            &["render", "--preset", "materials"][..],
+            "materials.toml",
+            shadeline::MATERIALS_SIZE,
+        ),
+    ] {
+        let built_in: Vec<&str> = args.iter().copied().chain(["-o", "a.png"]).collect();
+        let out = shadeline(&built_in, &dir);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let scene = format!("{scenes}{file}");
+        let out = shadeline(&["render", &scene, "-o", "b.png"], &dir);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let (a, b) = (read_png(&dir.join("a.png")), read_png(&dir.join("b.png")));
+        assert_eq!((a.0, a.1), size, "{args:?}");
+        assert_eq!((b.0, b.1), size, "{file}");
+        assert!(a.4 == b.4, "{args:?} is not the picture of {file}");
+    }
+}
+
+#[test]
+fn an_unknown_path_is_refused_naming_it() {
+    let dir = temp_dir("unknown-path");
+    let out = shadeline(&["render", "--path", "simd16"], &dir);
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(err.starts_with("error:") && err.contains("simd16"), "{err}");
+    assert!(!dir.join("spheres.png").exists());
+}

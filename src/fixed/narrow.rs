@@ -718,6 +718,7 @@ mod tests {
         );
         assert!(count > 10_000, "{count} surfaces");
         assert!(worst_rv <= DELTA as f64, "R − V off by {worst_rv}");
+        assert!(worst_n <= DELTA as f64, "N off by {worst_n}");
     }
 
     #[test]

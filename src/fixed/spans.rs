@@ -22,7 +22,7 @@
 //! `10⁻⁴` of the coordinate on each side, so rounding in this `f32` computation and in the
 //! fixed hit test cannot leave a hit pixel out. A sphere that is not clearly in front
 //! (`cz ≤ 1.05·r`: it contains the eye, or reaches the camera's side plane, or the
-//! quadratic is ill-conditioned) spans the whole frame. `tests/fixed_agreement.rs` checks
+//! quadratic is ill-conditioned) spans the whole frame. `tests/fixed_render.rs` checks
 //! that spans change no pixel against testing every sphere at every pixel.
 
 use crate::runs::Span;

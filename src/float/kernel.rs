@@ -29,7 +29,7 @@
 //! no lane shows a normalized material does the classic models' arithmetic alone.
 //!
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
-//! compiled packet loop is one function, as the firmware's instruction counts check.
+//! compiler sees the packet loop as one function.
 
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, PreparedLight, Row, MAX_ARRIVING};
