@@ -97,20 +97,18 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         });
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
-            let mut dir = self.direction(start as u32, y);
             if let Some(mut narrow) = self.narrow_run(start as u32, y, &spans) {
-                // The narrow kernel, and the full-width one where the narrow one hands over.
-                // The direction advances without saturating here: the prepare only sets up
-                // the narrow kernel when every direction's components are below 2 (2⁴⁹ raw).
+                // The narrow kernel, and the full-width one where the narrow one hands over,
+                // on that pixel's direction (exact whether stepped or computed directly).
                 for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                     let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS) {
                         Narrow::Done(shaded) => shaded,
-                        Narrow::Precise => self.shade_ray(dir, column, &spans, P::NEEDS_HITS),
+                        Narrow::Precise => {
+                            let dir = self.direction(column, y);
+                            self.shade_ray(dir, column, &spans, P::NEEDS_HITS)
+                        }
                     };
                     self.narrow_advance(&mut narrow);
-                    for (c, a) in dir.iter_mut().zip(advance) {
-                        *c = I16F48::from_bits(c.to_bits().wrapping_add(a));
-                    }
                     *px = match shaded {
                         Some(s) => encode(s.color, s.hit, encoding, column, y),
                         None => background.at(column as usize),
@@ -118,6 +116,7 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                 }
                 return;
             }
+            let mut dir = self.direction(start as u32, y);
             for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                 let shaded = self.shade_ray(dir, column, &spans, P::NEEDS_HITS);
                 *px = match shaded {
