@@ -92,6 +92,40 @@ fn spans_change_no_pixel_with_spheres_near_and_around_the_camera() {
 }
 
 #[test]
+fn outline_spans_hold_every_pixel_on_wide_and_tall_frames() {
+    // The outline spans are computed in f32 at prepare and evaluated in integers per row:
+    // against frames where every sphere is tested at every pixel, and against the f64
+    // reference's own hits (an outline computed independently of both kernels), on frames
+    // wide, tall, large and thin.
+    let sizes = [(320, 240), (240, 320), (400, 37), (37, 400), (129, 128)];
+    for (i, scene) in random_scenes(60, 0x5eed_0c0e).iter().enumerate() {
+        let (w, h) = sizes[i % sizes.len()];
+        assert_spans_change_nothing(scene, w, h, &format!("random scene {i} at {w}x{h}"));
+        let f = PreparedFixed::new(scene, w, h).unwrap();
+        let reference = reference_frame(scene, w, h);
+        for y in 0..h {
+            let spans = f.row_spans(y);
+            for x in 0..w {
+                let Some(k) = reference[(y * w + x) as usize].hit.sphere else {
+                    continue;
+                };
+                let inside = spans
+                    .get(k as usize)
+                    .copied()
+                    .flatten()
+                    .is_some_and(|s| s.start <= x && x < s.end);
+                assert!(
+                    inside,
+                    "random scene {i} at {w}x{h}: the reference hits sphere {k} at ({x},{y}), \
+                     outside its span {:?}",
+                    spans.get(k as usize)
+                );
+            }
+        }
+    }
+}
+
+#[test]
 fn spans_skip_work_without_losing_pixels() {
     let scene = exponent_series().unwrap();
     let f = PreparedFixed::new(&scene, 320, 240).unwrap();
@@ -113,8 +147,9 @@ fn spans_skip_work_without_losing_pixels() {
         "spans cover {covered} sphere-pixels for {hit} hit pixels, of {}",
         320 * 240
     );
+    // The outline spans test 1.16 sphere-pixels per hit pixel here (rectangles: 1.56).
     assert!(
-        covered < hit * 2,
+        covered * 100 < hit * 125,
         "spans are loose: {covered} for {hit} hits"
     );
 }

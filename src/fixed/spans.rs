@@ -1,11 +1,14 @@
 //! Scanline spans of the fixed path: a conservative screen rectangle per sphere, computed
-//! once per frame at prepare, so that no row needs any arithmetic beyond two comparisons.
+//! once per frame at prepare, narrowed on each row to the sphere's outline.
 //!
-//! The float path solves a quadratic per row and sphere in `f32`; doing that in integers
-//! would need a square root and a division per row and sphere, and would have to be proven
-//! conservative against the fixed hit test's own rounding. A rectangle is free per row and
-//! easy to prove: it costs about `4/π` more tested pixels than the ellipse inside it, and a
-//! tested pixel that misses costs nine multiplications.
+//! The rectangle alone costs about `4/π` more tested pixels than the ellipse inside it (1.56
+//! sphere-pixels tested per covered pixel on the exponent series, with its margins), and
+//! every tested pixel costs the kernel its hit test and its forward differences. So each
+//! sphere also gets its outline's row coefficients ([`RowConic`]), computed in `f32` at
+//! prepare like the rectangle, and evaluated per row in integers: a few exact products and
+//! an integer square root per row and sphere, no division, widened by bounds on the `f32`
+//! coefficients' errors so that it stays conservative. Spheres whose coefficients do not
+//! fit (frames over 4096 pixels, spheres far off screen) keep the rectangle.
 //!
 //! # The rectangle
 //!
@@ -25,30 +28,120 @@
 //! quadratic is ill-conditioned) spans the whole frame. `tests/fixed_render.rs` checks
 //! that spans change no pixel against testing every sphere at every pixel.
 
+use super::mul::{mul_ii, mul_uu};
 use crate::runs::Span;
 use crate::vec3::Vec3;
 
 /// Pixels of widening on each side.
 const MARGIN_PIXELS: f32 = 2.0;
+/// The same widening of the outline's spans, in columns.
+const MARGIN_COLUMNS: i64 = 2;
 /// Relative widening on each side.
 const MARGIN_RELATIVE: f32 = 1.0e-4;
 /// Spheres with `cz ≤ NEAR·r` span the whole frame.
 const NEAR: f32 = 1.05;
 
-/// The rows and columns a sphere can cover, both half-open.
+/// The rows and columns a sphere can cover, both half-open, and its outline row by row.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct Bounds {
     /// First row and one past the last.
     pub rows: (u32, u32),
     /// The columns, as a row span.
     pub cols: Span,
+    /// The outline, where its coefficients fit the row arithmetic.
+    pub conic: Option<RowConic>,
 }
 
 impl Bounds {
-    /// The span on row `y`, if the rectangle reaches it.
+    /// The span on row `y`: the rectangle's columns, narrowed to the outline's on that row.
     #[inline(always)]
     pub(crate) fn on_row(&self, y: u32) -> Option<Span> {
-        (self.rows.0 <= y && y < self.rows.1).then_some(self.cols)
+        if !(self.rows.0 <= y && y < self.rows.1) {
+            return None;
+        }
+        match &self.conic {
+            Some(conic) => conic.on_row(y, self.cols),
+            None => Some(self.cols),
+        }
+    }
+}
+
+/// The sphere's outline on the screen, a conic, as the row arithmetic needs it.
+///
+/// With `dy = h − 2y − 1` the row's offset from the image centre in half pixels, the rays of
+/// row `y` that meet the sphere are the columns `x` with `|x − x_c(dy)| ≤ √hw²(dy)`, where
+/// the chord's centre moves linearly and its squared half-width is a downward parabola:
+///
+/// ```text
+/// x_c(dy) = p + q·dy          hw²(dy) = H − G·(dy − dy₀)²
+/// ```
+///
+/// With the centre at `(cx, cy, cz)` in camera coordinates, `K = |c|² − r²`,
+/// `A = cy² + cz² − r²` and `s` half a pixel on the image plane `z = 1` (`y`'s coefficients
+/// likewise, `x = (X/s + w − 1)/2` for an image-plane coordinate `X`):
+///
+/// ```text
+/// p = (cx·cz/(A·s) + w − 1)/2     q = cx·cy/(2A)     dy₀ = cy·cz/((cz² − r²)·s)
+/// H = K·r²/(4A·s²·(cz² − r²))      G = K·(cz² − r²)/(4A²)
+/// ```
+///
+/// (from `(c·d)² ≥ K·|d|²` for the direction `d = (X, Y, 1)`, solved for `X`). The
+/// coefficients are computed in `f32` at prepare and held in fixed point; each row takes
+/// three exact 32×32→64 products and an integer square root. The span is
+/// widened so that no rounding can leave out a pixel the hit tests take: `hw²` by
+/// `4 + 2⁻¹³·(H + G·t²)` columns² and `|dy − dy₀|` shrunk by `2⁻¹⁶·|dy₀| + 2⁻⁷` (bounds on
+/// the `f32` coefficients' errors, far above them), then two columns on each side, as the
+/// rectangle is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct RowConic {
+    /// `h − 1`: `dy = dy_top − 2y`.
+    dy_top: i32,
+    /// `dy₀`, Q8; `|dy₀| ≤ 2¹⁴`.
+    dy0: i32,
+    /// How far `|dy − dy₀|` is shrunk, Q8.
+    dy0_slack: i32,
+    /// `H`, columns², Q16; `H ≤ 2²⁴`.
+    h: i64,
+    /// `G`, columns² per `dy²`, Q16; `G ≤ 2⁴`.
+    g: u32,
+    /// `p`, columns, Q16; `|p| ≤ 2²⁰`.
+    p: i64,
+    /// `q`, columns per `dy`, Q16; `|q| ≤ 2⁸`.
+    q: i32,
+}
+
+impl RowConic {
+    /// The columns of `cols` on row `y` the outline can reach, or `None`.
+    #[inline(always)]
+    fn on_row(&self, y: u32, cols: Span) -> Option<Span> {
+        // y < h ≤ 2¹²: dy in (−2¹², 2¹²).
+        let dy = self.dy_top - 2 * y as i32;
+        // |t| < 2²³ (Q8), shrunk toward 0 by the slack.
+        let t = ((dy << 8) - self.dy0).unsigned_abs();
+        let t = t.saturating_sub(self.dy0_slack as u32);
+        let t2 = (mul_uu(t, t) >> 16) as u32; // dy², Q0: < 2³⁰
+        let gt = mul_uu(self.g, t2) as i64; // Q16, < 2⁵⁰
+        let slack = (4 << 16) + ((self.h + gt) >> 13);
+        let v = self.h - gt + slack;
+        if v < 0 {
+            return None;
+        }
+        // √v in Q8 columns, rounded up: v < 2⁴² (H ≤ 2²⁴ in Q16 plus its slack).
+        let v = v as u64;
+        let root = if v >> 32 == 0 {
+            (v as u32).isqrt() + 1
+        } else {
+            (((v >> 16) as u32).isqrt() + 1) << 8
+        };
+        let half = (root >> 8) as i64 + 1 + MARGIN_COLUMNS;
+        let centre = (self.p + mul_ii(self.q, dy)) >> 16; // floor of x_c
+        let start = (centre - half).max(cols.start as i64);
+        // + 1: x_c may lie anywhere in [centre, centre + 1).
+        let end = (centre + half + 2).min(cols.end as i64);
+        (start < end).then(|| Span {
+            start: start as u32,
+            end: end as u32,
+        })
     }
 }
 
@@ -75,6 +168,7 @@ impl View {
                 start: 0,
                 end: self.width,
             },
+            conic: None,
         });
         let oc = center - self.eye;
         let (cx, cy, cz) = (oc.dot(self.right), oc.dot(self.up), oc.dot(self.forward));
@@ -103,6 +197,49 @@ impl View {
         Some(Bounds {
             rows: rows?,
             cols: cols.map(|(start, end)| Span { start, end })?,
+            conic: self.conic(cx, cy, cz, radius),
+        })
+    }
+
+    /// The outline's row coefficients (see [`RowConic`]) of the sphere at `(cx, cy, cz)` in
+    /// camera coordinates, if the sphere is clearly in front and they fit their formats.
+    fn conic(&self, cx: f32, cy: f32, cz: f32, r: f32) -> Option<RowConic> {
+        if self.width > 1 << 12 || self.height > 1 << 12 {
+            return None;
+        }
+        let s = self.half_pixel;
+        let (r2, front) = (r * r, cz * cz - r * r);
+        let k = cx * cx + cy * cy + front;
+        let a = cy * cy + front;
+        let w = self.width as f32;
+        let p = (cx * cz / (a * s) + w - 1.0) * 0.5;
+        let q = cx * cy / (2.0 * a);
+        let dy0 = cy * cz / (front * s);
+        let h = k * r2 / (4.0 * a * s * s * front);
+        let g = k * front / (4.0 * a * a);
+        let fits = |v: f32, limit: f32| v.is_finite() && v.abs() <= limit;
+        if !(front > 0.0
+            && a > 0.0
+            && fits(p, (1 << 20) as f32)
+            && fits(q, (1 << 8) as f32)
+            && fits(dy0, (1 << 14) as f32)
+            && fits(h, (1 << 24) as f32)
+            && fits(g, (1 << 4) as f32)
+            && g > 0.0)
+        {
+            return None;
+        }
+        let q16 = (1u32 << 16) as f32;
+        let dy0 = (dy0 * 256.0) as i32;
+        Some(RowConic {
+            dy_top: self.height as i32 - 1,
+            dy0,
+            dy0_slack: (dy0.unsigned_abs() >> 16) as i32 + 2,
+            // Rounded toward wider spans: H up, G down.
+            h: libm::ceilf(h * q16) as i64,
+            g: libm::floorf(g * q16) as u32,
+            p: (p * q16) as i64,
+            q: (q * q16) as i32,
         })
     }
 }
