@@ -9,6 +9,7 @@
 //! iterators, and every index is checked, so nothing here can panic.
 
 use super::kernel::{ray, Shaded};
+use super::mul::{mul_ii, mul_iu};
 use super::narrow::Narrow;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
@@ -53,6 +54,24 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         record_hits: bool,
     ) -> Option<Shaded> {
         ray(dir).and_then(|d| self.shade(d, x, spans, record_hits))
+    }
+
+    /// [`Self::direction`] where the narrow kernel is set up: every direction's components
+    /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
+    /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
+    /// same bits as [`Self::direction`].
+    fn narrow_direction_wide(&self, x: u32, y: u32) -> V3<I16F48> {
+        // |dx|, |dy| ≤ 2·MAX_DIMENSION + 1 < 2³¹.
+        let dy = self.height as i32 - 2 * y as i32 - 1;
+        let dx = 2 * x as i32 + 1 - self.width as i32;
+        let scale =
+            |k: i32, v: i64| (mul_ii(k, (v >> 32) as i32) << 32).wrapping_add(mul_iu(k, v as u32));
+        each3(|i| {
+            let v = self.forward[i].to_bits()
+                + scale(dy, self.step_y[i].to_bits())
+                + scale(dx, self.step_x[i].to_bits());
+            I16F48::from_bits(v)
+        })
     }
 
     /// The unnormalized primary direction of pixel `(x, y)`:
@@ -104,7 +123,8 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                     let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS) {
                         Narrow::Done(shaded) => shaded,
                         Narrow::Precise => {
-                            let dir = self.direction(column, y);
+                            let dir = self.narrow_direction_wide(column, y);
+                            debug_assert_eq!(dir, self.direction(column, y));
                             self.shade_ray(dir, column, &spans, P::NEEDS_HITS)
                         }
                     };
