@@ -107,12 +107,44 @@ struct Track {
 }
 
 /// The state of the narrow kernel along one run of a row.
+///
+/// A run merges the spans of every sphere it crosses, but at one column only the tracks
+/// whose span covers it take part: `active` lists them (indices into `tracks`), and is
+/// rebuilt only at `changes_at`, the next column where a span begins or ends, so a pixel
+/// pays nothing for the spheres of the run that are elsewhere on the row.
 pub(crate) struct NarrowRun<const S: usize> {
     /// The current column and its direction.
     x: u32,
     d: V3<i32>,
     step: V3<i32>,
     tracks: heapless::Vec<Track, S>,
+    active: heapless::Vec<u8, S>,
+    changes_at: u32,
+}
+
+/// The tracks whose span covers column `x` (indices into `tracks`), and the next column
+/// where a span begins or ends.
+#[inline(always)]
+fn activity<const S: usize>(tracks: &[Track], x: u32) -> (heapless::Vec<u8, S>, u32) {
+    let mut active = heapless::Vec::new();
+    let mut changes_at = u32::MAX;
+    for (i, t) in tracks.iter().enumerate() {
+        if t.span.start <= x && x < t.span.end {
+            // As many entries as tracks, and the prepare only sets up the narrow kernel for
+            // at most 256 spheres, which `u8` indexes: cannot fail.
+            let pushed = active.push(i as u8);
+            debug_assert!(pushed.is_ok());
+        }
+        let next = if x < t.span.start {
+            t.span.start
+        } else {
+            t.span.end
+        };
+        if x < next {
+            changes_at = changes_at.min(next);
+        }
+    }
+    (active, changes_at)
 }
 
 /// A hit: the sphere, `u`, `N·V`, `b`, and `t` in raw I16F16 once two hits are compared.
@@ -285,11 +317,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let pushed = tracks.push(track);
             debug_assert!(pushed.is_ok());
         }
+        let (active, changes_at) = activity(&tracks, x);
         Some(NarrowRun {
             x,
             d: Self::narrow_direction(view, x, y, self.width, self.height),
             step: view.step_x.map(|c| 2 * c),
             tracks,
+            active,
+            changes_at,
         })
     }
 
@@ -300,19 +335,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         for (c, s) in run.d.iter_mut().zip(run.step) {
             *c += s;
         }
-        // By index: an iterator's trip count would be a division by the size of a track,
-        // which ARMv6-M makes a call.
-        for i in 0..run.tracks.len() {
-            if let Some(t) = run.tracks.get_mut(i) {
-                if t.span.start <= run.x && run.x < t.span.end {
-                    t.w[0] += t.dw[0];
-                    t.w[1] += t.dw[1];
-                    t.w[2] += t.dw[2];
-                    t.b += t.db;
-                }
+        for &i in &run.active {
+            debug_assert!((i as usize) < run.tracks.len());
+            if let Some(t) = run.tracks.get_mut(i as usize) {
+                t.w[0] += t.dw[0];
+                t.w[1] += t.dw[1];
+                t.w[2] += t.dw[2];
+                t.b += t.db;
             }
         }
         run.x += 1;
+        if run.x >= run.changes_at {
+            (run.active, run.changes_at) = activity(&run.tracks, run.x);
+        }
     }
 
     /// Shades pixel `x` of `run` with the narrow kernel, or says it needs the full-width one.
@@ -344,13 +379,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let sigma = sigma.min(ONE as u32) as i32;
 
         let mut best: Option<Hit> = None;
-        for i in 0..run.tracks.len() {
-            let t = run.tracks.get(i);
+        for &i in &run.active {
+            let t = run.tracks.get(i as usize);
             debug_assert!(t.is_some(), "track {i} of {}", run.tracks.len());
             let Some(t) = t else {
                 continue;
             };
-            if !(t.span.start <= x && x < t.span.end) || t.b >= 0 {
+            debug_assert!(t.span.start <= x && x < t.span.end);
+            if t.b >= 0 {
                 continue;
             }
             let high = t.w.map(|c| (c >> 32) as i32 >> t.right);

@@ -401,7 +401,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             .iter()
             .all(|l| matches!(l, FixedLight::Distant { .. }));
         let classic = self.spheres.iter().all(|s| !s.normalized);
-        if !(all_distant && classic && self.casters_apart()) {
+        // The narrow run indexes its tracks by `u8`.
+        if !(all_distant && classic && S <= 256 && self.casters_apart()) {
             return;
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.

@@ -31,7 +31,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let mut out = heapless::Vec::new();
         for s in &self.spheres {
             let span = if self.use_spans {
-                s.bounds.and_then(|b| b.on_row(y))
+                s.bounds.and_then(|b| b.on_row(y, self.height))
             } else {
                 Some(full)
             };

@@ -53,14 +53,15 @@ pub(crate) struct Bounds {
 }
 
 impl Bounds {
-    /// The span on row `y`: the rectangle's columns, narrowed to the outline's on that row.
+    /// The span on row `y` of a frame `height` rows high: the rectangle's columns, narrowed
+    /// to the outline's on that row.
     #[inline(always)]
-    pub(crate) fn on_row(&self, y: u32) -> Option<Span> {
+    pub(crate) fn on_row(&self, y: u32, height: u32) -> Option<Span> {
         if !(self.rows.0 <= y && y < self.rows.1) {
             return None;
         }
         match &self.conic {
-            Some(conic) => conic.on_row(y, self.cols),
+            Some(conic) => conic.on_row(y, height, self.cols),
             None => Some(self.cols),
         }
     }
@@ -94,35 +95,33 @@ impl Bounds {
 /// rectangle is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) struct RowConic {
-    /// `h − 1`: `dy = dy_top − 2y`.
-    dy_top: i32,
     /// `dy₀`, Q8; `|dy₀| ≤ 2¹⁴`.
     dy0: i32,
-    /// How far `|dy − dy₀|` is shrunk, Q8.
-    dy0_slack: i32,
-    /// `H`, columns², Q16; `H ≤ 2²⁴`.
-    h: i64,
+    /// `H`, columns², Q8; `H ≤ 2²⁴`.
+    h: u32,
     /// `G`, columns² per `dy²`, Q16; `G ≤ 2⁴`.
     g: u32,
-    /// `p`, columns, Q16; `|p| ≤ 2²⁰`.
-    p: i64,
+    /// `p`, columns, Q8; `|p| ≤ 2²⁰`.
+    p: i32,
     /// `q`, columns per `dy`, Q16; `|q| ≤ 2⁸`.
     q: i32,
 }
 
 impl RowConic {
-    /// The columns of `cols` on row `y` the outline can reach, or `None`.
+    /// The columns of `cols` on row `y` of a frame `height` rows high the outline can reach,
+    /// or `None`.
     #[inline(always)]
-    fn on_row(&self, y: u32, cols: Span) -> Option<Span> {
-        // y < h ≤ 2¹²: dy in (−2¹², 2¹²).
-        let dy = self.dy_top - 2 * y as i32;
-        // |t| < 2²³ (Q8), shrunk toward 0 by the slack.
+    fn on_row(&self, y: u32, height: u32, cols: Span) -> Option<Span> {
+        // y < height ≤ 2¹²: dy in (−2¹², 2¹²).
+        let dy = height as i32 - 2 * y as i32 - 1;
+        // |t| < 2²³ (Q8), shrunk toward 0 by the slack for dy₀'s error.
         let t = ((dy << 8) - self.dy0).unsigned_abs();
-        let t = t.saturating_sub(self.dy0_slack as u32);
+        let t = t.saturating_sub((self.dy0.unsigned_abs() >> 16) + 2);
         let t2 = (mul_uu(t, t) >> 16) as u32; // dy², Q0: < 2³⁰
         let gt = mul_uu(self.g, t2) as i64; // Q16, < 2⁵⁰
-        let slack = (4 << 16) + ((self.h + gt) >> 13);
-        let v = self.h - gt + slack;
+        let h = (self.h as i64) << 8; // Q16
+        let slack = (4 << 16) + ((h + gt) >> 13);
+        let v = h - gt + slack;
         if v < 0 {
             return None;
         }
@@ -134,7 +133,7 @@ impl RowConic {
             (((v >> 16) as u32).isqrt() + 1) << 8
         };
         let half = (root >> 8) as i64 + 1 + MARGIN_COLUMNS;
-        let centre = (self.p + mul_ii(self.q, dy)) >> 16; // floor of x_c
+        let centre = (((self.p as i64) << 8) + mul_ii(self.q, dy)) >> 16; // floor of x_c
         let start = (centre - half).max(cols.start as i64);
         // + 1: x_c may lie anywhere in [centre, centre + 1).
         let end = (centre + half + 2).min(cols.end as i64);
@@ -223,22 +222,19 @@ impl View {
             && fits(p, (1 << 20) as f32)
             && fits(q, (1 << 8) as f32)
             && fits(dy0, (1 << 14) as f32)
-            && fits(h, (1 << 24) as f32)
+            && fits(h, ((1 << 24) - 1) as f32)
             && fits(g, (1 << 4) as f32)
             && g > 0.0)
         {
             return None;
         }
         let q16 = (1u32 << 16) as f32;
-        let dy0 = (dy0 * 256.0) as i32;
         Some(RowConic {
-            dy_top: self.height as i32 - 1,
-            dy0,
-            dy0_slack: (dy0.unsigned_abs() >> 16) as i32 + 2,
+            dy0: (dy0 * 256.0) as i32,
             // Rounded toward wider spans: H up, G down.
-            h: libm::ceilf(h * q16) as i64,
+            h: libm::ceilf(h * 256.0) as u32,
             g: libm::floorf(g * q16) as u32,
-            p: (p * q16) as i64,
+            p: (p * 256.0) as i32,
             q: (q * q16) as i32,
         })
     }
