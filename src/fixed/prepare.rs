@@ -43,6 +43,14 @@ pub const MAX_LEVEL: f32 = 32_767.0;
 /// `narrow_vectors_within_delta` (the largest seen is 26 steps of `2⁻¹⁵`).
 pub(crate) const DELTA: f32 = 1.0 / 1024.0;
 
+/// The same bound near the reflection, where `h = ½|R − V|² < 1/8` (`N·V ≥ 0.3`):
+/// `20·2⁻¹⁵` (the largest seen is 17.9 steps, checked by `narrow_vectors_within_delta`).
+/// The lobe's error bound, which decides whether a sphere's highlight needs the full-width
+/// kernel, uses it for `n ≥ 32`: the lobe's slope `n·√(2h)·e^(−nh)`, which turns an error
+/// of `R − V` into an error of the lobe, peaks at `h = 1/(2n)` and is below a tenth of its
+/// peak from `h = 4/n ≤ 1/8` on, where [`DELTA`] bounds the error.
+pub(crate) const DELTA_LOBE: f32 = 20.0 / 32768.0;
+
 /// The primary directions of a frame in narrow form: `D = forward + dy·step_y + dx·step_x`
 /// with `dx = 2x + 1 − w` and `dy = h − 2y − 1`, integer vectors with `|D| < 2³⁰`.
 #[derive(Clone, Copy, Debug)]
@@ -477,7 +485,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 // Saturates at 2: above 1 the lobe is 0 anyway.
                 ((h + 2.5 * DELTA) * (1u64 << 31) as f32) as u32
             };
-            let lobe_error = ks_intensity * 255.0 * libm::sqrtf(n) * DELTA * 0.61;
+            let delta = if n >= 32.0 { DELTA_LOBE } else { DELTA };
+            let lobe_error = ks_intensity * 255.0 * libm::sqrtf(n) * delta * 0.61;
             s.narrow = Some(NarrowSphere {
                 left,
                 right: shift + left - 32,
