@@ -229,6 +229,62 @@ fn bad_rows_and_buffers_are_refused_like_the_float_path() {
     }
 }
 
+#[test]
+fn prepared_in_place_is_the_same_frame_and_an_error_leaves_it_empty() {
+    let series = exponent_series().unwrap();
+    let mut frame = PreparedFixed::<16, 8>::EMPTY;
+    let mut line = [Rgb565::default(); 64];
+    assert!(
+        frame.render_line(0, &mut line).is_err(),
+        "an empty frame renders nothing"
+    );
+    // Prepared in place, again over a frame already prepared at another size and spans off.
+    frame.prepare(&series, 40, 30).unwrap();
+    let mut frame = frame.with_spans(false);
+    frame.prepare(&series, 64, 48).unwrap();
+    let fresh = PreparedFixed::new(&series, 64, 48).unwrap();
+    let (got, want): (Vec<Raw>, Vec<Raw>) = (frame_of(&frame), frame_of(&fresh));
+    assert!(got == want, "prepared in place differs from new");
+    // A scene the fixed path refuses: an error naming the field, and an empty frame.
+    let mut tiny = base_scene();
+    tiny.add_sphere(Sphere {
+        center: Vec3::new(2.0, 0.0, 0.0),
+        radius: 1.0e-4,
+        material: Material::default(),
+    })
+    .unwrap();
+    let mut small = PreparedFixed::<4, 2>::EMPTY;
+    small.prepare(&base_scene(), 32, 32).unwrap();
+    assert_eq!(
+        small.prepare(&tiny, 32, 32),
+        Err(RenderError::OutOfFixedRange {
+            item: Item::Sphere(1),
+            field: "radius"
+        })
+    );
+    let mut row = [Rgb565::default(); 32];
+    assert!(
+        small.render_line(0, &mut row).is_err(),
+        "a refused prepare leaves it empty"
+    );
+    assert_eq!((small.width(), small.height()), (0, 0));
+}
+
+fn frame_of<R: Render>(r: &R) -> Vec<Raw> {
+    frame(r)
+}
+
+fn base_scene() -> Scene<4, 2> {
+    let mut s: Scene<4, 2> = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+    s.add_sphere(Sphere {
+        center: Vec3::new(0.0, 0.0, 0.0),
+        radius: 1.0,
+        material: Material::default(),
+    })
+    .unwrap();
+    s
+}
+
 fn camera() -> Camera {
     Camera {
         position: Vec3::new(0.0, 0.0, 10.0),

@@ -471,7 +471,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             let own = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
             let casters = self.casters(index, light_index);
-            if own || (casters != 0 && self.narrow_blocked(index, ns, n, to_light, casters)) {
+            let blocked =
+                || self.narrow_blocked(index, ns, n, (light_index, to_light, nl), casters);
+            if own || (casters != 0 && blocked()) {
                 if record_hits && light_index < 32 {
                     shadowed |= 1 << light_index;
                 }
@@ -530,25 +532,48 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// from each of its casters, so the lifted point is outside them: a caster blocks iff
     /// the ray moves toward its centre (`b = (O − C)·L < 0`) and passes within its radius
     /// (`|O − C|² − b² ≤ r²`), and no square root is needed.
+    ///
+    /// The sphere's [`FastCaster`] (`ns.fast`), if it has one, is first put through a 32-bit
+    /// filter; the exact test runs only where the filter cannot decide. `light` is the
+    /// light's index, `L` and `N·L` (Q15).
     #[inline(always)]
     fn narrow_blocked(
         &self,
         index: usize,
         ns: &NarrowSphere,
         n: V3<i32>,
-        to_light: V3<Unit>,
+        light: (usize, V3<Unit>, i32),
         casters: u32,
     ) -> bool {
         debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
         let Some(own) = self.spheres.get(index) else {
             return false;
         };
-        let lift = (ns.radius as i64 + self.epsilon.to_bits() as i64).min(i32::MAX as i64) as i32;
-        let origin = each3(|i| own.center[i].to_bits() as i64 + (mul_ii(lift, n[i]) >> 15));
+        let (light_index, to_light, nl) = light;
+        let mut origin: Option<V3<i64>> = None;
         for (k, s) in self.spheres.iter().enumerate() {
             if k == index || (k < 32 && casters & (1 << k) == 0) {
                 continue;
             }
+            if let Some(f) = ns
+                .fast
+                .as_ref()
+                .filter(|f| f.sphere as usize == k && f.light as usize == light_index)
+            {
+                let nl11 = nl >> 4;
+                if nl11 >= f.ahead as i32 {
+                    continue;
+                }
+                let d = each3(|i| (n[i] >> 4) - f.c[i] as i32);
+                let t = nl11 - f.g as i32;
+                if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] - t * t > f.reach2 {
+                    continue;
+                }
+            }
+            let origin = *origin.get_or_insert_with(|| {
+                let lift = (ns.radius as i64 + self.epsilon.to_bits() as i64).min(i32::MAX as i64);
+                each3(|i| own.center[i].to_bits() as i64 + (mul_ii(lift as i32, n[i]) >> 15))
+            });
             let oc = each3(|i| to_len(origin[i] - s.center[i].to_bits() as i64));
             let b = dot_len_unit(oc, to_light);
             if b >= 0 {

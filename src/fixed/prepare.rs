@@ -80,6 +80,32 @@ pub(crate) struct NarrowSphere {
     pub cutoff: u32,
     /// Whether the narrow lobe is within a quarter level wherever it is not 0.
     pub lobe_everywhere: bool,
+    /// The first caster the 32-bit filter covers, if any.
+    pub fast: Option<FastCaster>,
+}
+
+/// A caster of a sphere, for the 32-bit filter in front of the narrow kernel's exact caster
+/// test (`narrow_blocked`). Lengths are in units of the sphere's radius `r`, Q11.
+///
+/// The shadow ray leaves `O = C + (r + ε)·N`. With `ĉ = (C_k − C)/r`, `d = N − ĉ` and
+/// `t = N·L − ĉ·L`, the ray moves toward the caster only if `t < 0`, and passes within
+/// `√(|d|² − t²)` of its centre (up to the lift's `ε/r`). The filter skips the exact test
+/// where `t` is clearly not negative or that distance clearly exceeds the caster's radius:
+/// the margins cover the rounding of `N`, `ĉ`, `ĉ·L` and `N·L` to Q11 and the lift's `ε/r`,
+/// so it only skips tests that the exact one fails too, and a frame keeps its bits.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FastCaster {
+    /// The caster's index and the light's.
+    pub sphere: u8,
+    pub light: u8,
+    /// `ĉ`, `|ĉ| ≤ 8`.
+    pub c: [i16; 3],
+    /// `ĉ·L`.
+    pub g: i16,
+    /// `N·L` (Q11) at or above this: `t ≥ 0`, the caster is behind the ray.
+    pub ahead: i16,
+    /// Q22: `|d|² − t²` above this, the ray passes outside the caster.
+    pub reach2: i32,
 }
 
 /// A sphere's per-frame constants, in scaled units.
@@ -223,6 +249,77 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// `colour·intensity` above [`MAX_LEVEL`] in a channel (`albedo`/`kd`, `ks`,
     /// `color`/`intensity`).
     pub fn new(scene: &Scene<S, L>, width: u32, height: u32) -> Result<Self, RenderError> {
+        let mut frame = Self::EMPTY;
+        frame.prepare(scene, width, height)?;
+        Ok(frame)
+    }
+
+    /// A frame with no size and no spheres, to [`prepare`](Self::prepare) into: a constant,
+    /// so that a firmware can keep its prepared frame in a `static` and prepare it there.
+    /// Rendering it fails with [`RenderError::BadSize`]'s checks (every row is out of range).
+    pub const EMPTY: Self = Self {
+        width: 0,
+        height: 0,
+        eye: [Len::ZERO; 3],
+        step_x: [I16F48::ZERO; 3],
+        step_y: [I16F48::ZERO; 3],
+        forward: [I16F48::ZERO; 3],
+        epsilon: Len::ZERO,
+        background: [0; 3],
+        spheres: heapless::Vec::new(),
+        lights: heapless::Vec::new(),
+        casters: heapless::Vec::new(),
+        narrow: None,
+        use_spans: true,
+    };
+
+    /// Prepares `scene` for a `width × height` image into `self`, in place: what
+    /// [`new`](Self::new) returns, without the prepared frame ever being on the stack (on a
+    /// 16 KiB microcontroller, two copies of it are a third of the RAM). Fails like `new`;
+    /// on an error `self` is left [`EMPTY`](Self::EMPTY), never half prepared. Spans are on,
+    /// whatever [`with_spans`](Self::with_spans) set before.
+    ///
+    /// ```
+    /// use shadeline::{exponent_series_with_capacity, PreparedFixed, Render, Rgb565, Scene};
+    /// // In a firmware this is a `static`, prepared again whenever the scene moves.
+    /// let mut frame = PreparedFixed::<5, 1>::EMPTY;
+    /// let scene: Scene<5, 1> = exponent_series_with_capacity()?;
+    /// frame.prepare(&scene, 64, 48)?;
+    /// let mut line = [Rgb565::default(); 64];
+    /// frame.render_line(24, &mut line)?;
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn prepare(
+        &mut self,
+        scene: &Scene<S, L>,
+        width: u32,
+        height: u32,
+    ) -> Result<(), RenderError> {
+        let result = self.prepare_fields(scene, width, height);
+        if result.is_err() {
+            self.clear();
+        }
+        result
+    }
+
+    /// Resets `self` to [`EMPTY`](Self::EMPTY) field by field (no temporary frame).
+    fn clear(&mut self) {
+        self.width = 0;
+        self.height = 0;
+        self.spheres.clear();
+        self.lights.clear();
+        self.casters.clear();
+        self.narrow = None;
+        self.use_spans = true;
+    }
+
+    fn prepare_fields(
+        &mut self,
+        scene: &Scene<S, L>,
+        width: u32,
+        height: u32,
+    ) -> Result<(), RenderError> {
+        self.clear();
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return Err(RenderError::BadSize { width, height });
         }
@@ -251,7 +348,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             height,
         };
 
-        let mut spheres = heapless::Vec::new();
         for (i, s) in scene.spheres().iter().enumerate() {
             let item = Item::Sphere(i);
             let m = &s.material;
@@ -289,11 +385,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 narrow: None,
             };
             // Same capacity as the scene: cannot fail.
-            let pushed = spheres.push(sphere);
+            let pushed = self.spheres.push(sphere);
             debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
         }
 
-        let mut lights = heapless::Vec::new();
         for (i, l) in scene.lights().iter().enumerate() {
             let item = Item::Light(i);
             let light = match *l {
@@ -342,18 +437,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 }
             };
             // Same capacity as the scene: cannot fail.
-            let pushed = lights.push(light);
+            let pushed = self.lights.push(light);
             debug_assert!(pushed.is_ok(), "light {i} beyond the prepared capacity");
         }
 
-        let mut casters = heapless::Vec::new();
         for i in 0..scene.spheres().len() {
             let mut per_light = [0u32; L];
             for (mask, light) in per_light.iter_mut().zip(scene.lights()) {
                 *mask = scene.shadow_casters(i, light);
             }
             // Same capacity as the scene: cannot fail.
-            let pushed = casters.push(per_light);
+            let pushed = self.casters.push(per_light);
             debug_assert!(
                 pushed.is_ok(),
                 "casters of sphere {i} beyond the prepared capacity"
@@ -361,27 +455,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
 
         let bg = scene.background();
-        let mut frame = PreparedFixed {
-            width,
-            height,
-            eye,
-            step_x: to_wide(right, half_pixel)?,
-            step_y: to_wide(up, half_pixel)?,
-            forward: to_wide(forward, 1.0)?,
-            epsilon,
-            // Saturating, like `saturating_from_num`, but without its panic on NaN.
-            background: [bg.r, bg.g, bg.b].map(|c| {
-                let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
-                U16F16::checked_from_num(c).unwrap_or(saturated).to_bits()
-            }),
-            spheres,
-            lights,
-            casters,
-            narrow: None,
-            use_spans: true,
-        };
-        frame.prepare_narrow(scene);
-        Ok(frame)
+        self.step_x = to_wide(right, half_pixel)?;
+        self.step_y = to_wide(up, half_pixel)?;
+        self.forward = to_wide(forward, 1.0)?;
+        self.width = width;
+        self.height = height;
+        self.eye = eye;
+        self.epsilon = epsilon;
+        // Saturating, like `saturating_from_num`, but without its panic on NaN.
+        self.background = [bg.r, bg.g, bg.b].map(|c| {
+            let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
+            U16F16::checked_from_num(c).unwrap_or(saturated).to_bits()
+        });
+        self.prepare_narrow(scene);
+        Ok(())
     }
 
     /// Whether every sphere is more than `4ε` from the surface of each sphere that can shadow
@@ -400,6 +487,68 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 d.iter().map(|&v| v * v).sum::<i64>() > apart * apart
             })
         })
+    }
+
+    /// The first caster of sphere `i` (over every light) that [`FastCaster`]'s filter can
+    /// take: one within eight radii of it, both with narrow constants.
+    fn fast_caster(&self, i: usize) -> Option<FastCaster> {
+        let own = self.spheres.get(i)?;
+        let ns = own.narrow.as_ref()?;
+        // The raw radius's bit length (see `NarrowSphere::right`): x/r in Q11 is
+        // x·gain >> (bits + 4).
+        let shift = ns.right + 18 - ns.left + 4;
+        let (gain, r) = (ns.gain as i64, ns.radius as i64);
+        let q11 = |x: i64| (x * gain) >> shift;
+        let eps = q11(self.epsilon.to_bits() as i64) as i32 + 1;
+        for (light_index, light) in self.lights.iter().enumerate().take(256) {
+            let FixedLight::Distant { to_light, .. } = *light else {
+                continue;
+            };
+            let casters = self
+                .casters
+                .get(i)
+                .and_then(|c| c.get(light_index))
+                .copied();
+            let casters = casters.unwrap_or(0);
+            for (k, s) in self.spheres.iter().enumerate().take(32) {
+                if k == i || casters & (1 << k) == 0 {
+                    continue;
+                }
+                let Some(kn) = s.narrow.as_ref() else {
+                    continue;
+                };
+                let c = each3(|j| s.center[j].to_bits() as i64 - own.center[j].to_bits() as i64);
+                if c.iter().any(|v| v.unsigned_abs() > 8 * r as u64) {
+                    continue;
+                }
+                let c = c.map(q11); // |ĉ| ≤ 8·2¹¹ + 1 per component
+                let c_len2 = c.iter().map(|&v| v * v).sum::<i64>();
+                if c_len2 > 64 << 22 {
+                    continue;
+                }
+                let g = c
+                    .iter()
+                    .zip(to_light)
+                    .map(|(&v, l)| v * l.to_bits() as i64)
+                    .sum::<i64>()
+                    >> 30;
+                // Steps of error: N, ĉ and N·L truncated to Q11 (one each per component),
+                // ĉ·L (two), the lift's ε/r; the squares add twice the largest |d| and |t|
+                // (at most |ĉ| + 1) times the error of each.
+                let margin = 8 + 2 * eps as i64;
+                let reach = q11(kn.radius as i64) + margin;
+                let d_max = (c_len2 as u64).isqrt() as i64 + (1 << 11) + margin;
+                return Some(FastCaster {
+                    sphere: k as u8,
+                    light: light_index as u8,
+                    c: c.map(|v| v as i16),
+                    g: g as i16,
+                    ahead: (g + 4 + eps as i64).min(i16::MAX as i64) as i16,
+                    reach2: (reach * reach + 4 * d_max * margin).min(i32::MAX as i64) as i32,
+                });
+            }
+        }
+        None
     }
 
     /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions.
@@ -498,7 +647,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     as u32,
                 cutoff,
                 lobe_everywhere: lobe_error <= 0.5 && n <= 256.0,
+                fast: None,
             });
+        }
+        for i in 0..self.spheres.len() {
+            let fast = self.fast_caster(i);
+            if let Some(ns) = self.spheres.get_mut(i).and_then(|s| s.narrow.as_mut()) {
+                ns.fast = fast;
+            }
         }
         self.narrow = Some(view);
     }

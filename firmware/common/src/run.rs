@@ -1,15 +1,17 @@
 //! One rendering path end to end on a board: build its scene and prepared frame, count
 //! covered pixels, render the frame with every row measured, CRC it, report one line.
 //!
-//! [`Session::build`] makes a value (the scene, a prepared frame) in place in a caller's slot
-//! — a `static` on the small boards, so nothing large is moved or copied through the stack
+//! [`Session::build`] makes a value (the scene, a prepared frame) in a caller's slot — a
+//! `static` on the small boards, so nothing large is moved or copied through the stack
 //! afterwards — in one measured region: the instructions of `Prepared…::new` are the
-//! `prepare=` figure of the path's line, measured exactly like a row.
+//! `prepare=` figure of the path's line, measured exactly like a row. [`Session::build_in`]
+//! does the same for a value prepared in place (`PreparedFixed::prepare` into a slot holding
+//! `PreparedFixed::EMPTY`), which never has the value on the stack at all.
 //!
 //! The order keeps everything that is not the render out of the measured regions: the
 //! covered-pixel count (with the `count-covered` feature) renders the frame once more into
-//! [`HitRecord`]s, a short segment at a time, and is never measured; the CRC is taken after each measured row (streaming) or
-//! after the frame (framebuffer); the report is formatted after everything. Each measured
+//! [`HitRecord`]s, a short segment at a time, and is never measured; the CRC is taken after
+//! each measured row (streaming) or after the frame (framebuffer); the report is formatted after everything. Each measured
 //! region is exactly one `render_line` call, so "instructions per frame" means the same
 //! thing whether rows go to a framebuffer or to a line buffer, on every board. The stack of
 //! every stage (build, count, render) is painted and counts toward the session's
@@ -163,6 +165,21 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         let ((), instructions) = self.meter.measure(|| *slot = make().ok());
         self.note_stack(lowest, paint_top, top);
         (slot.as_ref(), instructions)
+    }
+
+    /// Like [`Session::build`] for a value prepared in place: `prepare` fills `slot` (a
+    /// `static` or a long-lived local), measured as one region, so the value is never on
+    /// the stack. `None` if `prepare` fails.
+    pub fn build_in<'s, T, E>(
+        &mut self,
+        slot: &'s mut T,
+        prepare: impl FnOnce(&mut T) -> Result<(), E>,
+    ) -> (Option<&'s T>, Option<u64>) {
+        let (lowest, top) = self.board.stack_limits();
+        let paint_top = self.paint();
+        let (ok, instructions) = self.meter.measure(|| prepare(&mut *slot).is_ok());
+        self.note_stack(lowest, paint_top, top);
+        (ok.then_some(&*slot), instructions)
     }
 
     /// Renders `path` into `sink`, measures it and reports it against `expected`, with

@@ -37,7 +37,7 @@ fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut`s owned by `main`: statics, no unsafe.
     static mut LINE: [Rgb565; WIDTH as usize] = [Rgb565(0); WIDTH as usize];
     static mut SCENE: Option<Scene<SPHERES, LIGHTS>> = None;
-    static mut FIXED: Option<PreparedFixed<SPHERES, LIGHTS>> = None;
+    static mut FIXED: PreparedFixed<SPHERES, LIGHTS> = PreparedFixed::EMPTY;
 
     let board = CortexMBoard::new("m0");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -51,7 +51,7 @@ fn main() -> ! {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
-    match session.build(FIXED, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
+    match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
         (Some(path), prepare) => session.run(
             "fixed",
             path,

@@ -29,7 +29,7 @@ fn main() -> ! {
     static mut FRAME: [Rgb565; PIXELS] = [Rgb565(0); PIXELS];
     static mut SCENE: Option<Scene> = None;
     static mut SCALAR: Option<Prepared<Scalar>> = None;
-    static mut FIXED: Option<PreparedFixed> = None;
+    static mut FIXED: PreparedFixed = PreparedFixed::EMPTY;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -59,7 +59,7 @@ fn main() -> ! {
             session.fail();
         }
     }
-    match session.build(FIXED, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
+    match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
         (Some(path), prepare) => session.run(
             "fixed",
             path,

@@ -38,7 +38,7 @@ fn main() -> ! {
     // 64 KiB), each built in place by `Session::build` and never moved.
     let mut scene_slot: Option<Scene> = None;
     let mut scalar_slot: Option<Prepared<Scalar>> = None;
-    let mut fixed_slot: Option<PreparedFixed> = None;
+    let mut fixed_slot = PreparedFixed::EMPTY;
     let (Some(scene), _) = session.build(&mut scene_slot, exponent_series) else {
         session.note("shadeline-fw error=scene\n");
         exit(false)
@@ -61,7 +61,7 @@ fn main() -> ! {
             session.fail();
         }
     }
-    match session.build(&mut fixed_slot, || PreparedFixed::new(scene, WIDTH, HEIGHT)) {
+    match session.build_in(&mut fixed_slot, |f| f.prepare(scene, WIDTH, HEIGHT)) {
         (Some(path), prepare) => session.run(
             "fixed",
             path,
