@@ -214,7 +214,19 @@ fn sqrt_q30(x: u32) -> i32 {
     if x == 0 {
         return 0;
     }
-    let k = even_leading_zeros(x);
+    // N·V's argument is mostly in [2²⁶, 2³⁰]: there two comparisons give the even count.
+    let k = if x >= 1 << 28 {
+        if x >= 1 << 30 {
+            0
+        } else {
+            2
+        }
+    } else if x >= 1 << 26 {
+        4
+    } else {
+        even_leading_zeros(x)
+    };
+    debug_assert_eq!(k, even_leading_zeros(x));
     let y = rsqrt_normalized(x << k);
     // √x = (x·2^k)·y·2^(−31)·2^(−k/2)
     let scaled = (((x << k).saturating_add(1 << 15) >> 16) * y) >> 14; // < 2¹⁹
