@@ -304,16 +304,7 @@ fn refused(scene: &Scene<4, 2>, w: u32, h: u32) -> Option<(Item, &'static str)> 
 
 #[test]
 fn scenes_that_do_not_fit_are_refused_naming_the_field() {
-    let base = || {
-        let mut s: Scene<4, 2> = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
-        s.add_sphere(Sphere {
-            center: Vec3::new(0.0, 0.0, 0.0),
-            radius: 1.0,
-            material: Material::default(),
-        })
-        .unwrap();
-        s
-    };
+    let base = base_scene;
     assert_eq!(refused(&base(), 32, 32), None);
 
     // A sphere below 2^-13 of the scene's extent.

@@ -137,7 +137,7 @@ impl RowConic {
         let start = (centre - half).max(cols.start as i64);
         // + 1: x_c may lie anywhere in [centre, centre + 1).
         let end = (centre + half + 2).min(cols.end as i64);
-        (start < end).then(|| Span {
+        (start < end).then_some(Span {
             start: start as u32,
             end: end as u32,
         })

@@ -484,16 +484,12 @@ pub(crate) fn nearest_hit<T: Lane>(
     radius_sq: T,
     eps: T,
 ) -> (T, T::Mask, Vec3<T>) {
-    let b = oc.dot(dir);
-    let f = oc - dir * b;
-    let disc = radius_sq - f.dot(f);
     let zero = T::splat(0.0);
-    let touches = zero.le(disc);
-    if !T::any(touches) {
+    let Some((b, f, disc, touches)) = closest_approach(oc, dir, radius_sq) else {
         // No lane meets the sphere: skip the square root (the mask is all false, so the
         // caller reads neither `t` nor `offset`).
-        return (zero, touches, f);
-    }
+        return (zero, T::lt(zero, zero), oc);
+    };
     let root = disc.max(zero).sqrt();
     let t_near = -b - root;
     let t_far = -b + root;
@@ -501,6 +497,22 @@ pub(crate) fn nearest_hit<T: Lane>(
     let t = T::select(near, t_near, t_far);
     let offset = f + dir * T::select(near, -root, root);
     (t, T::and(touches, eps.lt(t)), offset)
+}
+
+/// The closest-approach quantities of the ray `origin + t·dir` (`dir` unit) and the sphere at
+/// `oc = origin − center`: `b = oc·dir`, `f = oc − b·dir`, `disc = r² − |f|²` and the lanes
+/// with `disc ≥ 0`; `None` when no lane has.
+#[inline(always)]
+fn closest_approach<T: Lane>(
+    oc: Vec3<T>,
+    dir: Vec3<T>,
+    radius_sq: T,
+) -> Option<(T, Vec3<T>, T, T::Mask)> {
+    let b = oc.dot(dir);
+    let f = oc - dir * b;
+    let disc = radius_sq - f.dot(f);
+    let touches = T::splat(0.0).le(disc);
+    T::any(touches).then_some((b, f, disc, touches))
 }
 
 /// Whether the ray `origin + t·dir` (`dir` unit, `oc = origin − center`) meets the sphere at
@@ -519,14 +531,10 @@ pub(crate) fn nearest_hit<T: Lane>(
 /// to its left side (`t_max = f32::MAX` for distant lights gives `t < t_max` always).
 #[inline(always)]
 pub(crate) fn meets<T: Lane>(oc: Vec3<T>, dir: Vec3<T>, radius_sq: T, eps: T, t_max: T) -> T::Mask {
-    let b = oc.dot(dir);
-    let f = oc - dir * b;
-    let disc = radius_sq - f.dot(f);
     let zero = T::splat(0.0);
-    let touches = zero.le(disc);
-    if !T::any(touches) {
-        return touches;
-    }
+    let Some((b, _, disc, touches)) = closest_approach(oc, dir, radius_sq) else {
+        return T::lt(zero, zero);
+    };
     let be = b + eps;
     let be2 = be * be;
     let near = T::and(be.lt(zero), disc.lt(be2));
