@@ -65,6 +65,41 @@ fn two_hundred_random_valid_scenes_render_without_panic() {
     }
 }
 
+#[test]
+fn frames_one_or_two_pixels_across_render_without_panic() {
+    // A frame one pixel wide leaves the horizontal pixel step unbounded by the field of view
+    // (the step is tan(vfov/2)/h, and w/h may be tiny): the narrow kernel's doubled step once
+    // overflowed i32 here (found by the paths_agree fuzz target).
+    let series = exponent_series().unwrap();
+    for vfov in [5.0, 36.87, 90.0, 150.0, 179.0] {
+        let camera = Camera {
+            vfov_degrees: vfov,
+            ..*series.camera()
+        };
+        let mut scene: Scene = Scene::new(camera, series.background()).unwrap();
+        for s in series.spheres() {
+            scene.add_sphere(*s).unwrap();
+        }
+        for l in series.lights() {
+            scene.add_light(*l).unwrap();
+        }
+        for (w, h) in [
+            (1, 1),
+            (1, 2),
+            (2, 1),
+            (1, 3),
+            (1, 240),
+            (2, 1000),
+            (1000, 1),
+        ] {
+            match render_all_formats(&scene, w, h, Encoding::LINEAR) {
+                Ok(()) | Err(RenderError::OutOfFixedRange { .. }) => {}
+                Err(e) => panic!("vfov {vfov}, {w}x{h}: {e}"),
+            }
+        }
+    }
+}
+
 fn log_uniform(lo: f32, hi: f32) -> impl Strategy<Value = f32> {
     (lo.log10()..hi.log10()).prop_map(|e| 10f32.powf(e))
 }
