@@ -963,6 +963,91 @@ mod tests {
         assert!(within_one as f64 >= 0.99 * (pixels - differ) as f64);
     }
 
+    /// The caster filter only skips tests the exact one fails: on random frames of spheres
+    /// close enough to shadow each other (most within eight radii, the filter's reach), every
+    /// pixel's colour and hit record is the same with the filter and without it.
+    #[test]
+    fn the_caster_filter_changes_no_pixel() {
+        use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
+        use crate::vec3::Vec3;
+        use crate::{HitRecord, LinearRgb, Render, Rgb888};
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move |lo: f32, hi: f32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        };
+        let (w, h) = (96u32, 72u32);
+        let (mut filtered, mut shadowed_pixels) = (0, 0usize);
+        for _ in 0..150 {
+            let angle = next(-3.1, 3.1);
+            let camera = Camera {
+                position: Vec3::new(8.0 * angle.sin(), next(-2.0, 4.0), 8.0 * angle.cos()),
+                look_at: Vec3::new(0.0, 0.0, 0.0),
+                up: Vec3::new(0.0, 1.0, 0.0),
+                vfov_degrees: next(30.0, 60.0),
+            };
+            let mut scene: Scene<8, 4> = Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).unwrap();
+            for _ in 0..(next(2.0, 7.99) as usize) {
+                scene
+                    .add_sphere(Sphere {
+                        center: Vec3::new(next(-2.0, 2.0), next(-1.5, 1.5), next(-2.0, 2.0)),
+                        radius: next(0.2, 0.9),
+                        material: Material {
+                            albedo: LinearRgb::new(0.8, 0.6, 0.4),
+                            kd: 0.8,
+                            ks: 0.3,
+                            shininess: next(2.0, 300.0),
+                            model: Model::Phong,
+                        },
+                    })
+                    .unwrap();
+            }
+            for _ in 0..(next(1.0, 2.99) as usize) {
+                scene
+                    .add_light(Light::Distant {
+                        direction: Vec3::new(next(-1.0, 1.0), next(-1.0, -0.2), next(-1.0, 1.0)),
+                        color: LinearRgb::new(1.0, 1.0, 1.0),
+                        intensity: 1.5,
+                    })
+                    .unwrap();
+            }
+            let Ok(with) = PreparedFixed::new(&scene, w, h) else {
+                continue;
+            };
+            if with.narrow.is_none()
+                || with
+                    .spheres
+                    .iter()
+                    .all(|s| s.narrow.as_ref().is_none_or(|n| n.fast.is_none()))
+            {
+                continue;
+            }
+            filtered += 1;
+            let mut without = with.clone();
+            for s in without.spheres.iter_mut() {
+                if let Some(n) = s.narrow.as_mut() {
+                    n.fast = None;
+                }
+            }
+            let mut a = std::vec![Rgb888::default(); (w * h) as usize];
+            let mut b = a.clone();
+            with.render_frame(&mut a).unwrap();
+            without.render_frame(&mut b).unwrap();
+            let mut ha = std::vec![HitRecord::default(); (w * h) as usize];
+            let mut hb = ha.clone();
+            with.render_frame(&mut ha).unwrap();
+            without.render_frame(&mut hb).unwrap();
+            assert!(a == b && ha == hb, "the caster filter changed a pixel");
+            shadowed_pixels += hb.iter().filter(|h| h.shadowed != 0).count();
+        }
+        std::println!(
+            "{filtered} frames with a filtered caster, {shadowed_pixels} shadowed pixels"
+        );
+        assert!(filtered >= 20 && shadowed_pixels > 3000);
+    }
+
     #[test]
     fn scale_q15_is_exact() {
         for a in [0u32, 1, 65535, 65536, 1 << 20, u32::MAX / 3] {
