@@ -8,15 +8,17 @@
 //! The fixed-point path, for scenes it accepts (it refuses the others with
 //! `OutOfFixedRange`; refusals are counted), renders without a panic; on *well-conditioned*
 //! scenes its 8-bit output is within [`FIXED_LEVELS`] levels of the scalar output on every
-//! pixel whose hit record agrees with the scalar one. A pixel whose hit record differs is a
-//! rounding of a decision only where the decision changes nearby: on a *boundary*, where
-//! one of the pixel's eight neighbours has another hit record in the scalar or the fixed
-//! frame (a silhouette, a shadow's edge, a row tangent to a sphere). Differences are counted
-//! over the whole run, on boundaries and off them; the share off boundaries may not exceed
-//! [`MAX_DIFFER`] (the fixed contract's 0.1 %) once [`MIN_PIXELS`] pixels have been compared.
-//! The share on boundaries has no cap here: the fuzzer steers toward scenes made of them
-//! (tiny frames, tangent rows), where it reaches the contract's 0.1 % after some 50,000
-//! inputs; the contract itself is held on natural scenes by `tests/fixed_agreement.rs`. Well-conditioned
+//! pixel whose hit record agrees with the scalar one. Most pixels whose hit records differ
+//! lie on a *boundary*, where one of the pixel's eight neighbours has another hit record in
+//! the scalar or the fixed frame (a silhouette, a shadow's edge, a row tangent to a sphere):
+//! there a decision is a rounding. Differences are counted over the whole run, on
+//! boundaries and off them; the share off boundaries (a decision that rounds differently
+//! with no visible edge next to it, such as a shadow ray grazing a sphere at one pixel) may
+//! not exceed [`MAX_DIFFER`] (the fixed contract's 0.1 %) once [`MIN_PIXELS`] pixels have
+//! been compared. The share on boundaries has no cap here: the fuzzer steers toward scenes
+//! made of them (tiny frames, tangent rows), where it reached the contract's 0.1 % after
+//! some 50,000 inputs; the contract itself is held on natural scenes by
+//! `tests/fixed_agreement.rs`. Well-conditioned
 //! ([`conditioned`]) bounds how much a rounding of a cosine or of the hit point can move a
 //! pixel: exponents in `[1, 1e4]` (below 1 the lobe `cos^n` has an infinite slope at 0,
 //! above 1e4 an `f32` cosine is too coarse for the lobe), weights and arriving light of
