@@ -78,8 +78,8 @@ impl Bounds {
 /// ```
 ///
 /// With the centre at `(cx, cy, cz)` in camera coordinates, `K = |c|² − r²`,
-/// `A = cy² + cz² − r²` and `s` half a pixel on the image plane `z = 1` (`y`'s coefficients
-/// likewise, `x = (X/s + w − 1)/2` for an image-plane coordinate `X`):
+/// `A = cy² + cz² − r²`, `s` half a pixel on the image plane `z = 1` and `x = (X/s + w − 1)/2`
+/// the column of an image-plane coordinate `X`:
 ///
 /// ```text
 /// p = (cx·cz/(A·s) + w − 1)/2     q = cx·cy/(2A)     dy₀ = cy·cz/((cz² − r²)·s)
