@@ -861,6 +861,17 @@ mod tests {
         assert!(worst.0 < 2e-4, "{worst:?}");
     }
 
+    /// A xorshift generator of uniform numbers in `[lo, hi)`, from `seed`.
+    fn uniform(seed: u64) -> impl FnMut(f32, f32) -> f32 {
+        let mut state = seed;
+        move |lo: f32, hi: f32| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        }
+    }
+
     /// Random frames the narrow kernel takes (one to three distant lights, up to six
     /// Phong and Blinn-Phong spheres that may overlap and shadow each other) against the
     /// `f64` reference: the fixed path's budget, and most frames must use the kernel.
@@ -870,13 +881,7 @@ mod tests {
         use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
         use crate::vec3::Vec3;
         use crate::{HitRecord, LinearRgb, Render, Rgb888};
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move |lo: f32, hi: f32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-        };
+        let mut next = uniform(0x2545_f491_4f6c_dd1du64);
         let (w, h) = (160u32, 120u32);
         let (mut narrow_frames, mut worst, mut differ) = (0, 0u16, 0usize);
         let (mut pixels, mut within_one) = (0usize, 0usize);
@@ -971,13 +976,7 @@ mod tests {
         use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
         use crate::vec3::Vec3;
         use crate::{HitRecord, LinearRgb, Render, Rgb888};
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = move |lo: f32, hi: f32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-        };
+        let mut next = uniform(0x9e37_79b9_7f4a_7c15u64);
         let (w, h) = (96u32, 72u32);
         let (mut filtered, mut shadowed_pixels) = (0, 0usize);
         for _ in 0..150 {
