@@ -3,8 +3,11 @@
 //! blocks, the thread itself), never per row or per block, and the rows it renders (the
 //! core, which has no allocator at all: `.ci/no-alloc-check`) allocate nothing.
 //!
-//! A counting global allocator sees every thread. This file holds one test, so nothing
-//! else runs while it counts.
+//! A counting global allocator sees every thread, so this file runs without the libtest
+//! harness (`harness = false` in `Cargo.toml`): libtest's own thread allocates while it waits
+//! for a test, at a moment that depends on the machine's load, and its allocations would be
+//! counted with the frame's. Here `main` is the only other thread, and it waits in the
+//! scoped-thread join, which allocates nothing.
 
 use shadeline::{exponent_series, Prepared, Render, Rgb888, Simd8};
 use shadeline_harness::rows::{render_rows_into, BLOCK_ROWS};
@@ -55,8 +58,8 @@ fn frame_allocations(height: u32, threads: usize) -> usize {
     n
 }
 
-#[test]
-fn threaded_rendering_allocates_per_thread_not_per_row() {
+fn main() {
+    println!("threaded rendering allocates per thread, not per row");
     // The counter works: a Vec allocates once, and growing it reallocates.
     assert_eq!(count(|| drop(std::hint::black_box(vec![1u8; 16]))), 1);
     for threads in [1, 2, 3, 8] {
