@@ -31,6 +31,7 @@
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
 //! compiler sees the packet loop as one function.
 
+use super::edges::Filter;
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, PreparedLight, Row, MAX_ARRIVING};
 use crate::brdf::{self, Params, Present};
@@ -100,7 +101,8 @@ struct Incoming<T> {
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// `shade`: the packet of pixels `x0, x0 + 1, …` on the row `row`, testing primary rays
     /// against the spheres listed in `candidates` (in scene order). Shadow bits are recorded
-    /// only if `record_hits`.
+    /// only if `record_hits`. With anti-aliasing on, lanes an outline crosses are then
+    /// blended with a second shading (`edges`).
     #[inline(always)]
     pub(crate) fn shade(
         &self,
@@ -109,8 +111,27 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         candidates: &[u16],
         record_hits: bool,
     ) -> Packet<W::Lane> {
-        let d = self.ray(row, x0);
-        let hit = self.hit(d, candidates);
+        let (u, d) = self.ray(row, x0);
+        let (packet, t) = self.shade_along(d, candidates, None, record_hits);
+        #[cfg(feature = "antialias")]
+        let packet = self.antialiased(packet, row, u, d, t, candidates);
+        #[cfg(not(feature = "antialias"))]
+        let _ = (u, t);
+        packet
+    }
+
+    /// The stages from `hit` on, along the unit directions `d`; also returns the hit
+    /// distance per lane (`f32::MAX` on a miss). `filter`, for the second shading of
+    /// anti-aliased edges, limits each lane to some spheres (see [`Filter`]).
+    #[inline(always)]
+    pub(crate) fn shade_along(
+        &self,
+        d: Vec3<W::Lane>,
+        candidates: &[u16],
+        filter: Option<Filter<W::Lane>>,
+        record_hits: bool,
+    ) -> (Packet<W::Lane>, W::Lane) {
+        let hit = self.hit(d, candidates, filter);
         let bg = self.background;
         let background = Vec3::splat(Vec3::new(bg.r, bg.g, bg.b));
         let any_hit = W::Lane::splat(0.0).le(hit.id);
@@ -120,7 +141,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             shadowed: [0; 8],
         };
         if !W::Lane::any(any_hit) {
-            return packet;
+            return (packet, hit.t);
         }
         let surface = self.normal(d, &hit, any_hit);
         let mut params = Params {
@@ -152,25 +173,30 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             )
         };
         packet.color = combine(&params, diffuse, specular, any_hit, background);
-        packet
+        (packet, hit.t)
     }
 
-    /// `ray`: the unit direction through each pixel centre,
-    /// `x = (2(i + ½)/w − 1)·(w/h)·tan(vfov/2)`, `d = normalize(x·right + row.base)`.
+    /// `ray`: the direction through each pixel centre, `u = x·right + row.base` with
+    /// `x = (2(i + ½)/w − 1)·(w/h)·tan(vfov/2)`, and the unit `d = normalize(u)`.
     #[inline(always)]
-    fn ray(&self, row: &Row, x0: u32) -> Vec3<W::Lane> {
+    fn ray(&self, row: &Row, x0: u32) -> (Vec3<W::Lane>, Vec3<W::Lane>) {
         let one = W::Lane::splat(1.0);
         let i = W::Lane::ramp(x0 as f32 + 0.5);
         let xc = ((i * W::Lane::splat(2.0)) / W::Lane::splat(self.width_f) - one)
             * W::Lane::splat(self.x_scale);
-        let d = Vec3::splat(self.right) * xc + Vec3::splat(row.base);
-        d * (one / d.dot(d).sqrt())
+        let u = Vec3::splat(self.right) * xc + Vec3::splat(row.base);
+        (u, u * (one / u.dot(u).sqrt()))
     }
 
     /// `hit`: the nearest `t > ε` among the `candidates` along `d`, with the hit sphere's
     /// material per lane. Closest-approach form of the quadratic (see [`nearest_hit`]).
     #[inline(always)]
-    fn hit(&self, d: Vec3<W::Lane>, candidates: &[u16]) -> Hit<W::Lane> {
+    fn hit(
+        &self,
+        d: Vec3<W::Lane>,
+        candidates: &[u16],
+        filter: Option<Filter<W::Lane>>,
+    ) -> Hit<W::Lane> {
         let eps = W::Lane::splat(self.epsilon);
         let zero = W::Lane::splat(0.0);
         let mut best = Hit {
@@ -192,7 +218,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 continue;
             };
             let oc = Vec3::splat(s.eye_offset);
-            let (t, hit, offset) = nearest_hit(oc, d, W::Lane::splat(s.radius_sq), eps);
+            let radius_sq = W::Lane::splat(s.radius_sq);
+            let (t, hit, offset) = match filter {
+                None => nearest_hit(oc, d, radius_sq, eps),
+                Some(filter) => filter.nearest_hit(k, oc, d, radius_sq, eps),
+            };
             let hit = W::Lane::and(hit, t.lt(best.t));
             if !W::Lane::any(hit) {
                 continue;

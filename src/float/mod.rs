@@ -10,6 +10,7 @@
 //! | `spans` | each sphere's analytic, conservative pixel span on a row |
 //! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
 //! | `kernel` | the per-pixel stages: `ray`, `hit`, `normal`, `lights` (`incoming`, `shadow`, `diffuse`, `specular`), `combine` |
+//! | `edges` | analytic anti-aliasing of the silhouettes: each outline's coverage of a pixel, and the blend |
 //! | `lane` | the lane trait: [`Real`](crate::real::Real) plus the operations only lanes have, each exactly specified |
 //! | `math` | the specular `pow`, identical at every width |
 //!
@@ -19,6 +20,8 @@
 //! x86-64 at the SSE2 baseline, AVX2 and the native CPU, on aarch64 with NEON and on wasm32
 //! with simd128: `.ci/bit-identity`).
 
+#[cfg_attr(not(feature = "antialias"), allow(dead_code))]
+mod edges;
 mod kernel;
 mod lane;
 mod math;

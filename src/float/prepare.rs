@@ -70,6 +70,23 @@ pub(crate) struct PreparedSphere {
     pub schlick: bool,
     /// Lobe 1 or 2 has a weight.
     pub more_lobes: bool,
+    /// The silhouette's constants for edge anti-aliasing (see `edges`).
+    pub outline: Outline,
+}
+
+/// A sphere's silhouette as the image-plane conic `F(x, y) = k·|u|² − (oc·u)² = 0`, with
+/// `u = x·right + y·up + forward` and `oc = C − eye`: what the `edges` stage and the
+/// anti-aliased spans read.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Outline {
+    /// `k = |oc|² − r²`; not above 0 when the eye is inside or on the sphere (no silhouette).
+    pub k: f32,
+    /// `oc·right` and `oc·up`: with `k`, the gradient of `F`.
+    pub oc_right: f32,
+    pub oc_up: f32,
+    /// `r²` of a sphere whose silhouette lies at least one pixel outside this one's: the
+    /// anti-aliased frame's spans use it, so they hold every pixel the outline's ramp reaches.
+    pub spans_radius_sq: f32,
 }
 
 /// A light's per-frame constants.
@@ -116,6 +133,10 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// ([`Scene::shadow_casters`]).
     pub(crate) casters: heapless::Vec<[u32; L], S>,
     pub(crate) use_spans: bool,
+    /// Whether silhouettes are anti-aliased ([`Prepared::with_antialiasing`]).
+    pub(crate) antialias: bool,
+    /// The side of a pixel on the image plane (at distance 1 from the eye).
+    pub(crate) pixel: f32,
     _path: PhantomData<W>,
 }
 
@@ -134,6 +155,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let width_f = width as f32;
         let height_f = height as f32;
         let eye = camera.position;
+        // The side of a pixel on the image plane at distance 1 (pixels are square).
+        let pixel = 2.0 * tan / height_f;
 
         let mut spheres = heapless::Vec::new();
         for s in scene.spheres() {
@@ -147,6 +170,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 normalized: params.normalized > 0.0,
                 schlick: params.schlick > 0.0,
                 more_lobes: params.weight[1..].iter().any(|&w| w > 0.0),
+                outline: Outline::of(s.center - eye, s.radius, pixel, right, up),
             };
             // Same capacity as the scene: cannot fail.
             let pushed = spheres.push(p);
@@ -209,6 +233,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             lights,
             casters,
             use_spans: true,
+            antialias: false,
+            pixel,
             _path: PhantomData,
         })
     }
@@ -222,10 +248,37 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     }
 
     /// The per-row constants of row `j`: camera-plane `y` is `(1 − 2(j + ½)/h)·tan(vfov/2)`.
+    /// Turns analytic anti-aliasing of the spheres' silhouettes on or off (off by default).
+    ///
+    /// With it on, a pixel the outline of its front sphere crosses gets that sphere's
+    /// coverage of the pixel, from the outline's conic, and blends the sphere's colour with
+    /// what lies behind it (the background, or a sphere further away). Pixels away from every
+    /// outline are shaded as without it, bit for bit. The scalar and SIMD paths stay
+    /// bit-identical; see `src/float/edges.rs` for the rule.
+    ///
+    /// ```
+    /// use shadeline::{exponent_series, Prepared, Render, Rgb888, Scalar};
+    ///
+    /// let scene = exponent_series()?;
+    /// let sharp = Prepared::<Scalar, _, _>::new(&scene, 64, 48)?;
+    /// let smooth = sharp.clone().with_antialiasing(true);
+    /// let (mut a, mut b) = ([Rgb888::default(); 64], [Rgb888::default(); 64]);
+    /// sharp.render_line(24, &mut a)?;
+    /// smooth.render_line(24, &mut b)?;
+    /// assert_ne!(a, b); // the silhouettes on the row are blended
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[cfg(feature = "antialias")]
+    pub fn with_antialiasing(mut self, on: bool) -> Self {
+        self.antialias = on;
+        self
+    }
+
     #[inline]
     pub(crate) fn row(&self, j: u32) -> Row {
         let yc = (1.0 - (2.0 * (j as f32 + 0.5)) / self.height_f) * self.y_scale;
         Row {
+            y: yc,
             base: self.up.scale(yc) + self.forward,
         }
     }
@@ -234,6 +287,42 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 /// Per-row constants: the camera-plane `y` term of every primary direction on row `j`.
 #[derive(Clone, Copy)]
 pub(crate) struct Row {
+    /// `y_j`, the row's image-plane coordinate.
+    pub y: f32,
     /// `y_j·up + forward`.
     pub base: Vec3,
+}
+
+impl Outline {
+    /// The outline of a sphere of radius `r` at `oc = C − eye`, for pixels of side `pixel` on
+    /// the image plane and the camera's `right` and `up`.
+    ///
+    /// The spans' radius: the silhouette is the cone of half-angle `θ = asin(r/|oc|)` around
+    /// `oc`, and a pixel subtends at most `pixel` radians anywhere on the image plane (the
+    /// gnomonic projection only stretches angles), so the sphere of half-angle
+    /// `θ + 1.5·pixel` has its outline at least 1.5 pixels outside this one's, beyond the
+    /// half-pixel ramp of the edges. Past a half-angle of 90° the cone has no silhouette:
+    /// `r² = |oc|²`, which the spans take as the whole row.
+    pub(crate) fn of(oc: Vec3, r: f32, pixel: f32, right: Vec3, up: Vec3) -> Outline {
+        let d2 = oc.dot(oc);
+        let k = d2 - r * r;
+        let spans_radius_sq = if k > 0.0 {
+            let d = libm::sqrtf(d2);
+            let angle = libm::asinf((r / d).min(1.0)) + 1.5 * pixel;
+            if angle < core::f32::consts::FRAC_PI_2 {
+                let s = libm::sinf(angle) * d;
+                s * s
+            } else {
+                d2
+            }
+        } else {
+            r * r
+        };
+        Outline {
+            k,
+            oc_right: oc.dot(right),
+            oc_up: oc.dot(up),
+            spans_radius_sq,
+        }
+    }
 }

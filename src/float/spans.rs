@@ -101,15 +101,23 @@ pub(crate) fn sphere_span(
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// The span of every sphere on row `y`, in scene order (`None`: not on this row).
     ///
-    /// With spans turned off ([`Prepared::with_spans`]) every sphere spans the whole row.
+    /// With spans turned off ([`Prepared::with_spans`]) every sphere spans the whole row. With
+    /// anti-aliasing on ([`Prepared::with_antialiasing`]) a span also holds every pixel the
+    /// sphere's outline partly covers.
     pub fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
         let row = self.row(y);
         let mut out = heapless::Vec::new();
         for s in &self.spheres {
             let span = if self.use_spans {
+                // Anti-aliased: a radius whose outline lies beyond the edges' ramp.
+                let radius_sq = if self.antialias {
+                    s.outline.spans_radius_sq
+                } else {
+                    s.radius_sq
+                };
                 sphere_span(
                     s.eye_offset,
-                    s.radius_sq,
+                    radius_sq,
                     self.right,
                     row.base,
                     self.x_scale,
