@@ -3,6 +3,8 @@
 //! them between the colours on either side. Its accuracy against a supersampled truth is
 //! measured by the harness (`shadeline compare`, `harness/tests/edges.rs`).
 
+#![cfg(feature = "antialias")]
+
 mod common;
 
 use common::{frame, random_scenes, random_scenes_all_models};

@@ -7,78 +7,41 @@
 //! `c = clamp(½ − F/(|∇F|·pixel), 0, 1)` of the pixel: a one-pixel ramp across the outline,
 //! exact for a straight edge through the pixel.
 //!
-//! Per lane, the *edge* is the front sphere whose outline lies within half a pixel of the
-//! centre: the sphere the centre ray hits, or one it misses that lies nearer than what it
-//! hits (by the distance to the ray's closest approach). A sphere the centre ray meets
-//! behind the one it hits is hidden there, so its outline is no edge. The pixel is then
-//! `c·front + (1 − c)·behind`, with one colour from the ordinary shading of the centre ray
-//! and the other from a second shading:
+//! Per lane, the *edge* is the front sphere whose outline lies within `1/√2` pixel of the
+//! centre (no straight edge farther away crosses the pixel): the sphere the centre ray hits,
+//! or one it misses that lies nearer than what it hits (by the distance to the ray's closest
+//! approach). A sphere the centre ray meets behind the one it hits is hidden there, so its
+//! outline is no edge. The pixel is then `c·front + (1 − c)·behind`, of the colours as a
+//! display shows them (each clamped to 1 first), with one colour from the shading of the
+//! centre ray and the other from one more shading:
 //!
 //! | the centre ray | front | behind |
 //! |---|---|---|
 //! | hits the edge's sphere | the centre ray's colour | the centre ray with that sphere left out |
 //! | misses it | that sphere alone, along the ray through the point `c/2` inside the outline (the middle of the covered strip), taken at its closest approach if rounding makes it miss | the centre ray's colour |
 //!
+//! Where two outlines cross a pixel (a sphere's edge over another's, the common case where
+//! spheres overlap on the screen), `behind` is itself anti-aliased the same way, once: the
+//! second edge is looked for with the first edge's sphere left out, against what lies behind
+//! it. So a pixel costs one to three shadings: one away from every outline, two on one
+//! outline, three where two meet. Measured against a 16×16 supersampled truth
+//! (`harness/tests/edges.rs`), this beats 4×4 supersampling on every scene tested.
+//!
+//! The coverage of a straight edge is the exact area of the square pixel on its inside
+//! ([`square_coverage`]), not a linear ramp: for an edge at 45° the two differ by up to 6%
+//! of the pixel, which on a bright sphere over a dark background is a visible 10 levels.
+//!
 //! Everything is lane arithmetic on exactly specified operations, so the scalar and SIMD
-//! paths stay bit-identical; pixels with no outline within half a pixel pay only the test
-//! `F² < pixel²·|∇F/2|²` per candidate sphere and keep their colour bit for bit; packets with
-//! no such pixel skip the rest. What this does not smooth: where two spheres intersect
-//! (the curve is not an outline), and a pixel two outlines cross keeps the nearer one only.
+//! paths stay bit-identical; pixels with no outline within reach pay only the test
+//! `F² < 2·pixel²·|∇F/2|²` per candidate sphere and keep their colour bit for bit; packets
+//! with no such pixel skip the rest. What this does not smooth: where two spheres intersect
+//! (that curve is not an outline), and a third outline in the same pixel.
 
-use super::kernel::Packet;
+use super::kernel::{Filter, Packet};
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, Row};
 use crate::real::Real;
 use crate::vec3::Vec3;
-
-/// Which spheres the second shading of an edge may hit, per lane: the edge's sphere alone
-/// (`only`, where the centre ray misses it), or every candidate but that sphere.
-#[derive(Clone, Copy)]
-pub(crate) struct Filter<T: Lane> {
-    /// The edge's sphere, as `f32`; `-1` on lanes with no edge.
-    pub sphere: T,
-    /// Lanes that shade the edge's sphere alone; the others leave it out.
-    pub only: T::Mask,
-}
-
-impl<T: Lane> Filter<T> {
-    /// [`nearest_hit`](super::kernel::nearest_hit) for candidate sphere `k` under the filter:
-    /// lanes that may not hit `k` miss it, and `only` lanes hit it even where rounding puts
-    /// their ray just outside it, at the closest approach (the outline itself).
-    #[inline(always)]
-    pub(crate) fn nearest_hit(
-        &self,
-        k: u16,
-        oc: Vec3<T>,
-        dir: Vec3<T>,
-        radius_sq: T,
-        eps: T,
-    ) -> (T, T::Mask, Vec3<T>) {
-        let zero = T::splat(0.0);
-        let kf = T::splat(k as f32);
-        let is_k = T::and(self.sphere.le(kf), kf.le(self.sphere));
-        let forced = T::and(self.only, is_k);
-        // The closest-approach form of the kernel's `nearest_hit`, with no early exit.
-        let b = oc.dot(dir);
-        let f = oc - dir * b;
-        let disc = radius_sq - f.dot(f);
-        let touches = zero.le(disc);
-        let root = disc.max(zero).sqrt();
-        let t_near = -b - root;
-        let near = eps.lt(t_near);
-        let t = T::select(near, t_near, -b + root);
-        let offset = f + dir * T::select(near, -root, root);
-        // Lanes that shade the edge's sphere alone hit nothing else; the others hit anything
-        // but the edge's sphere.
-        let allowed = T::select(
-            self.only,
-            T::select(is_k, T::splat(1.0), zero),
-            T::select(is_k, zero, T::splat(1.0)),
-        );
-        let meets = T::and(T::or(touches, forced), eps.lt(t));
-        (t, T::and(meets, zero.lt(allowed)), offset)
-    }
-}
 
 /// What `edges` found on a packet's lanes.
 pub(crate) struct Edge<T: Lane> {
@@ -88,36 +51,82 @@ pub(crate) struct Edge<T: Lane> {
     inside: T::Mask,
     /// The edge sphere's coverage of the pixel, in `(0, 1)` on `lanes`.
     coverage: T,
-    /// The unit directions of the second shading.
+    /// The signed distance from the pixel centre to the outline, in pixels (positive
+    /// outside), and the outline's unit normal in pixel axes (`x` right, `y` up).
+    dist: T,
+    normal: (T, T),
+    /// The unit directions of the edge's shading (front or behind, see the module docs).
     pub direction: Vec3<T>,
-    /// The spheres the second shading may hit.
+    /// The spheres the edge's shading may hit.
     pub filter: Filter<T>,
 }
 
 impl<T: Lane> Edge<T> {
-    /// The anti-aliased colour: `c·front + (1 − c)·behind` on edge lanes (see the table in
-    /// the module docs), `centre` elsewhere; saturated at `f32::MAX` like `combine`.
+    /// `c·front + (1 − c)·behind` per channel, of the colours as a display shows them: each
+    /// clamped to 1 first. (The colours are never negative or NaN.) A box filter of the
+    /// displayed image averages clamped values, and a highlight far above 1 on a sphere's rim
+    /// would otherwise spill over the whole pixel.
     #[inline(always)]
-    pub(crate) fn blend(&self, centre: Vec3<T>, second: Vec3<T>) -> Vec3<T> {
+    fn mix(&self, front: Vec3<T>, behind: Vec3<T>) -> Vec3<T> {
         let c = self.coverage;
-        let rest = T::splat(1.0) - c;
-        let cap = T::splat(f32::MAX);
-        let front = Vec3::select(self.inside, centre, second);
-        let behind = Vec3::select(self.inside, second, centre);
-        let mix = |a: T, b: T| (a * c + b * rest).min(cap);
-        let blended = Vec3::new(
+        let one = T::splat(1.0);
+        let rest = one - c;
+        let mix = |a: T, b: T| a.min(one) * c + b.min(one) * rest;
+        Vec3::new(
             mix(front.x, behind.x),
             mix(front.y, behind.y),
             mix(front.z, behind.z),
-        );
-        Vec3::select(self.lanes, blended, centre)
+        )
+    }
+
+    /// The share of the part of the pixel that this (front) edge leaves uncovered which
+    /// `behind`, an edge further away, covers: `(c_b − area(A ∩ B))/(1 − c_a)`, in `[0, 1]`.
+    ///
+    /// Both coverages are exact for straight edges ([`square_coverage`]); the overlap of the
+    /// two half-planes is taken as `c_b` times the share of `behind`'s points that this edge
+    /// covers too, counted on an 8×8 grid of points in the pixel. Two edges on opposite
+    /// sides of a pixel (a gap between two spheres) then share nothing, and an edge over a
+    /// parallel one (a sphere in front of another's rim) hides the part it overlaps.
+    #[inline(always)]
+    fn coverage_left(&self, behind: &Edge<T>) -> T {
+        let (zero, one) = (T::splat(0.0), T::splat(1.0));
+        let (mut both, mut all) = (zero, zero);
+        for i in 0..GRID {
+            let oy = T::splat((i as f32 + 0.5) / GRID as f32 - 0.5);
+            let (a_row, b_row) = (
+                self.dist + self.normal.1 * oy,
+                behind.dist + behind.normal.1 * oy,
+            );
+            for j in 0..GRID {
+                let ox = T::splat((j as f32 + 0.5) / GRID as f32 - 0.5);
+                let in_b = (b_row + behind.normal.0 * ox).lt(zero);
+                let in_a = (a_row + self.normal.0 * ox).lt(zero);
+                all = all + T::select(in_b, one, zero);
+                both = both + T::select(T::and(in_a, in_b), one, zero);
+            }
+        }
+        let shared = both / all.max(one);
+        let left = one - self.coverage;
+        let share = (behind.coverage * (one - shared)) / left.max(T::splat(1.0e-6));
+        share.max(zero).min(one)
+    }
+
+    /// The edge's lanes blended from `base`, the colour without this edge's shading, and
+    /// `shaded`, that shading's colour (front and behind as in the module docs); `base`
+    /// elsewhere.
+    #[inline(always)]
+    fn blend(&self, base: Vec3<T>, shaded: Vec3<T>) -> Vec3<T> {
+        let front = Vec3::select(self.inside, base, shaded);
+        let behind = Vec3::select(self.inside, shaded, base);
+        Vec3::select(self.lanes, self.mix(front, behind), base)
     }
 }
 
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// The packet `centre` (the centre rays `u`, unit `d`, which hit at distance `t`) with
-    /// its edge lanes anti-aliased, if anti-aliasing is on: `edges`, the second shading, and
-    /// the blend.
+    /// the lanes that outlines cross anti-aliased, if anti-aliasing is on: the first edge,
+    /// its shading, then the edge behind it, its shading, and the blends (see the module
+    /// docs).
     #[inline(always)]
     pub(crate) fn antialiased(
         &self,
@@ -128,19 +137,41 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         t: W::Lane,
         candidates: &[u16],
     ) -> Packet<W::Lane> {
-        if self.antialias {
-            if let Some(edge) = self.edges(row, u, d, centre.sphere, t, candidates) {
-                let (second, _) =
-                    self.shade_along(edge.direction, candidates, Some(edge.filter), false);
-                centre.color = edge.blend(centre.color, second.color);
-            }
+        if !self.antialias {
+            return centre;
         }
+        let none = W::Lane::splat(-1.0);
+        let Some(first) = self.edges(row, u, d, (centre.sphere, t), none, candidates) else {
+            return centre;
+        };
+        let (second, second_t) =
+            self.shade_along(first.direction, candidates, Some(first.filter), false);
+        // What lies behind the first edge: the second shading where the centre ray hits the
+        // edge's sphere (it left that sphere out), the centre ray elsewhere.
+        let inside = first.inside;
+        let behind = Vec3::select(inside, second.color, centre.color);
+        let behind_id = W::Lane::select(inside, second.sphere, centre.sphere);
+        let behind_t = W::Lane::select(inside, second_t, t);
+        let front = Vec3::select(inside, centre.color, second.color);
+        let sphere = first.filter.sphere;
+        let behind = match self.edges(row, u, d, (behind_id, behind_t), sphere, candidates) {
+            Some(mut edge) => {
+                edge.filter.also = sphere;
+                edge.coverage = first.coverage_left(&edge);
+                let (third, _) =
+                    self.shade_along(edge.direction, candidates, Some(edge.filter), false);
+                edge.blend(behind, third.color)
+            }
+            None => behind,
+        };
+        centre.color = Vec3::select(first.lanes, first.mix(front, behind), centre.color);
         centre
     }
 
-    /// `edges`: for the packet whose centre rays are `u` (unit: `d`), which hit sphere `hit_id`
-    /// (`-1`: none) at distance `hit_t`, the front outline within half a pixel of each lane's
-    /// centre among the `candidates`, or `None` when no lane has one.
+    /// `edges`: for the packet whose centre rays are `u` (unit: `d`), behind which the
+    /// nearest sphere is `hit_id` (`-1`: none) at distance `hit_t` (`f32::MAX` on a miss), the
+    /// front outline within reach of each lane's centre among the `candidates` but `exclude`
+    /// (per lane; `-1`: none), or `None` when no lane has one.
     // `!(k > 0)` on purpose: a NaN takes the branch that has no silhouette.
     #[allow(clippy::neg_cmp_op_on_partial_ord)]
     #[inline(always)]
@@ -149,8 +180,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         row: &Row,
         u: Vec3<W::Lane>,
         d: Vec3<W::Lane>,
-        hit_id: W::Lane,
-        hit_t: W::Lane,
+        (hit_id, hit_t): (W::Lane, W::Lane),
+        exclude: W::Lane,
         candidates: &[u16],
     ) -> Option<Edge<W::Lane>> {
         let zero = W::Lane::splat(0.0);
@@ -181,10 +212,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             // |F|/|∇F| < pixel/√2 (no straight edge farther away crosses the pixel), with
             // ∇F = 2g: F² < 2·pixel²·|g|². Centre in front of the eye.
             let near = W::Lane::and((fk * fk).lt(band * (gxk * gxk + gyk * gyk)), zero.lt(along));
+            let kf = W::Lane::splat(k as f32);
+            let excluded = W::Lane::and(exclude.le(kf), kf.le(exclude));
+            let near = W::Lane::and_not(near, excluded);
             if !W::Lane::any(near) {
                 continue;
             }
-            let kf = W::Lane::splat(k as f32);
             let is_hit = W::Lane::and(hit_id.le(kf), kf.le(hit_id));
             let dk = W::Lane::select(is_hit, hit_t, along / uu.sqrt());
             // A sphere the centre ray misses, nearer than what it hits, is in front there.
@@ -216,11 +249,20 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             lanes,
             inside,
             coverage,
+            dist,
+            normal: (gx / g, gy / g),
             direction: Vec3::select(only, pulled, d),
-            filter: Filter { sphere, only },
+            filter: Filter {
+                sphere,
+                also: W::Lane::splat(-1.0),
+                only,
+            },
         })
     }
 }
+
+/// Points per side of the grid [`Edge::coverage_left`] counts overlaps on.
+const GRID: usize = 8;
 
 /// The area of the unit pixel on the inside of a straight edge at signed distance `dist`
 /// (pixels, positive outside) from its centre, the edge's unit normal being `(nx, ny)` up to

@@ -31,7 +31,6 @@
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
 //! compiler sees the packet loop as one function.
 
-use super::edges::Filter;
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, PreparedLight, Row, MAX_ARRIVING};
 use crate::brdf::{self, Params, Present};
@@ -496,6 +495,61 @@ const NO_MATERIAL: Params<f32> = Params {
     schlick: 0.0,
     diffuse_loss: 0.0,
 };
+
+/// Which spheres an edge's extra shading may hit, per lane: the edge's sphere alone
+/// (`only` lanes, where the centre ray misses it), or every candidate but the edge's sphere
+/// and `also` (an edge in front of it, already accounted for).
+// Built only by the `edges` stage.
+#[cfg_attr(not(feature = "antialias"), allow(dead_code))]
+#[derive(Clone, Copy)]
+pub(crate) struct Filter<T: Lane> {
+    /// The edge's sphere, as `f32`; `-1` on lanes with no edge.
+    pub sphere: T,
+    /// A sphere the lanes that are not `only` leave out as well; `-1`: none.
+    pub also: T,
+    /// Lanes that shade the edge's sphere alone.
+    pub only: T::Mask,
+}
+
+#[cfg_attr(not(feature = "antialias"), allow(dead_code))]
+impl<T: Lane> Filter<T> {
+    /// [`nearest_hit`] for candidate sphere `k` under the filter: lanes that may not hit `k`
+    /// miss it, and `only` lanes hit it even where rounding puts their ray just outside it,
+    /// at the closest approach (the outline itself).
+    #[inline(always)]
+    pub(crate) fn nearest_hit(
+        &self,
+        k: u16,
+        oc: Vec3<T>,
+        dir: Vec3<T>,
+        radius_sq: T,
+        eps: T,
+    ) -> (T, T::Mask, Vec3<T>) {
+        let (zero, one) = (T::splat(0.0), T::splat(1.0));
+        let kf = T::splat(k as f32);
+        let is = |v: T| T::and(v.le(kf), kf.le(v));
+        let is_k = is(self.sphere);
+        let forced = T::and(self.only, is_k);
+        // The closest-approach form of `nearest_hit`, with no early exit.
+        let b = oc.dot(dir);
+        let f = oc - dir * b;
+        let disc = radius_sq - f.dot(f);
+        let touches = zero.le(disc);
+        let root = disc.max(zero).sqrt();
+        let t_near = -b - root;
+        let near = eps.lt(t_near);
+        let t = T::select(near, t_near, -b + root);
+        let offset = f + dir * T::select(near, -root, root);
+        let left_out = T::or(is_k, is(self.also));
+        let allowed = T::select(
+            self.only,
+            T::select(is_k, one, zero),
+            T::select(left_out, zero, one),
+        );
+        let meets = T::and(T::or(touches, forced), eps.lt(t));
+        (t, T::and(meets, zero.lt(allowed)), offset)
+    }
+}
 
 /// Nearest intersection with `t > ε` of the ray `origin + t·dir` (`dir` unit) with the sphere
 /// at offset `oc = origin − center`: `(t, hit, offset)`, where `offset` is the hit point

@@ -20,7 +20,7 @@
 //! x86-64 at the SSE2 baseline, AVX2 and the native CPU, on aarch64 with NEON and on wasm32
 //! with simd128: `.ci/bit-identity`).
 
-#[cfg_attr(not(feature = "antialias"), allow(dead_code))]
+#[cfg(feature = "antialias")]
 mod edges;
 mod kernel;
 mod lane;

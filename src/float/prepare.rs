@@ -71,9 +71,11 @@ pub(crate) struct PreparedSphere {
     /// Lobe 1 or 2 has a weight.
     pub more_lobes: bool,
     /// The silhouette's constants for edge anti-aliasing (see `edges`).
+    #[cfg(feature = "antialias")]
     pub outline: Outline,
 }
 
+#[cfg(feature = "antialias")]
 /// A sphere's silhouette as the image-plane conic `F(x, y) = k·|u|² − (oc·u)² = 0`, with
 /// `u = x·right + y·up + forward` and `oc = C − eye`: what the `edges` stage and the
 /// anti-aliased spans read.
@@ -133,9 +135,11 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// ([`Scene::shadow_casters`]).
     pub(crate) casters: heapless::Vec<[u32; L], S>,
     pub(crate) use_spans: bool,
-    /// Whether silhouettes are anti-aliased ([`Prepared::with_antialiasing`]).
+    /// Whether silhouettes are anti-aliased (`Prepared::with_antialiasing`).
+    #[cfg(feature = "antialias")]
     pub(crate) antialias: bool,
     /// The side of a pixel on the image plane (at distance 1 from the eye).
+    #[cfg(feature = "antialias")]
     pub(crate) pixel: f32,
     _path: PhantomData<W>,
 }
@@ -156,6 +160,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let height_f = height as f32;
         let eye = camera.position;
         // The side of a pixel on the image plane at distance 1 (pixels are square).
+        #[cfg(feature = "antialias")]
         let pixel = 2.0 * tan / height_f;
 
         let mut spheres = heapless::Vec::new();
@@ -170,6 +175,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 normalized: params.normalized > 0.0,
                 schlick: params.schlick > 0.0,
                 more_lobes: params.weight[1..].iter().any(|&w| w > 0.0),
+                #[cfg(feature = "antialias")]
                 outline: Outline::of(s.center - eye, s.radius, pixel, right, up),
             };
             // Same capacity as the scene: cannot fail.
@@ -233,7 +239,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             lights,
             casters,
             use_spans: true,
+            #[cfg(feature = "antialias")]
             antialias: false,
+            #[cfg(feature = "antialias")]
             pixel,
             _path: PhantomData,
         })
@@ -278,6 +286,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     pub(crate) fn row(&self, j: u32) -> Row {
         let yc = (1.0 - (2.0 * (j as f32 + 0.5)) / self.height_f) * self.y_scale;
         Row {
+            #[cfg(feature = "antialias")]
             y: yc,
             base: self.up.scale(yc) + self.forward,
         }
@@ -288,11 +297,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 #[derive(Clone, Copy)]
 pub(crate) struct Row {
     /// `y_j`, the row's image-plane coordinate.
+    #[cfg(feature = "antialias")]
     pub y: f32,
     /// `y_j·up + forward`.
     pub base: Vec3,
 }
 
+#[cfg(feature = "antialias")]
 impl Outline {
     /// The outline of a sphere of radius `r` at `oc = C − eye`, for pixels of side `pixel` on
     /// the image plane and the camera's `right` and `up`.

@@ -110,11 +110,14 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         for s in &self.spheres {
             let span = if self.use_spans {
                 // Anti-aliased: a radius whose outline lies beyond the edges' ramp.
+                #[cfg(feature = "antialias")]
                 let radius_sq = if self.antialias {
                     s.outline.spans_radius_sq
                 } else {
                     s.radius_sq
                 };
+                #[cfg(not(feature = "antialias"))]
+                let radius_sq = s.radius_sq;
                 sphere_span(
                     s.eye_offset,
                     radius_sq,
