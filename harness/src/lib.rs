@@ -9,6 +9,7 @@
 #![warn(missing_docs)]
 
 pub mod compare;
+pub mod edges;
 pub mod image;
 pub mod paths;
 pub mod rows;

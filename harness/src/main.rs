@@ -24,8 +24,9 @@ use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
 use shadeline::MAX_DIMENSION;
 use shadeline_harness::compare::{self, Row};
+use shadeline_harness::edges::{self, EdgeRow};
 use shadeline_harness::image::PngFile;
-use shadeline_harness::paths::{self, Path, PATHS};
+use shadeline_harness::paths::{self, Options, Path, PrepareError, PATHS};
 use shadeline_harness::rows::{check_memory, default_threads, new_frame, FrameError};
 use shadeline_harness::scene_file::{
     builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
@@ -85,6 +86,11 @@ struct Input {
     /// Image height in pixels, instead of the scene file's.
     #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     height: Option<u32>,
+    /// Anti-alias the silhouettes analytically, as `antialias = true` under `[image]` does
+    /// (float paths). With `compare`: also measure the edges against a 16×16 supersampled
+    /// truth, next to 4×4 supersampling.
+    #[arg(long)]
+    antialias: bool,
     /// Threads to render rows on [default: the available parallelism].
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
     threads: Option<u16>,
@@ -157,6 +163,13 @@ impl Input {
         self.threads.map_or_else(default_threads, usize::from)
     }
 
+    /// The rendering options: the scene file's, with `--antialias` turning edges on.
+    fn options(&self, file: &SceneFile) -> Options {
+        Options {
+            antialias: self.antialias || file.antialias,
+        }
+    }
+
     /// Reads and checks the scene, applying `--width`/`--height`.
     fn load(&self) -> Result<SceneFile, Failure> {
         let failed = |e: shadeline::SceneError| Failure::input(format!("error: {e}"));
@@ -210,7 +223,8 @@ fn render(
     let path: Path = paths::find(path_name)
         .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
     let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
-    let frame = (path.prepare)(&file.scene, file.width, file.height).map_err(failed)?;
+    let frame = (path.prepare)(&file.scene, file.width, file.height, input.options(&file))
+        .map_err(|e| Failure::input(format!("error: {e}")))?;
     let png = open_output(output)?;
     let mut rgb =
         new_frame(file.width, file.height).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
@@ -252,7 +266,11 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     let file = input.load()?;
     let threads = input.threads();
     let (scene, w, h) = (&file.scene, file.width, file.height);
-    let failed = |e: shadeline::RenderError| Failure::frame(e.into());
+    let failed = |e: PrepareError| match e {
+        PrepareError::Render(e) => Failure::frame(e.into()),
+        other => Failure::input(format!("error: {other}")),
+    };
+    let sharp = Options::default();
     let png = open_output(output)?;
     // Every buffer compare holds at once, checked before the first frame is rendered.
     check_memory(w, h, compare::bytes_per_pixel(PATHS.len()))
@@ -266,14 +284,14 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         let mut rgb = Vec::new();
         for _ in 0..RUNS {
             let start = Instant::now();
-            rgb = (path.prepare)(scene, w, h)
+            rgb = (path.prepare)(scene, w, h, sharp)
                 .map_err(failed)?
                 .render_rgb(threads)
                 .map_err(Failure::frame)?;
             times.push(start.elapsed().as_secs_f64() * 1e3);
         }
         times.sort_by(f64::total_cmp);
-        let hits = (path.prepare)(scene, w, h)
+        let hits = (path.prepare)(scene, w, h, sharp)
             .map_err(failed)?
             .render_hits(threads)
             .map_err(Failure::frame)?;
@@ -297,5 +315,50 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         PATHS.iter().map(|p| p.name).collect::<Vec<_>>().join(" | "),
         compare::DIFF_GAIN
     );
+    if input.options(&file).antialias {
+        compare_edges(&file, threads)?;
+    }
+    Ok(())
+}
+
+/// The silhouette table: the sharp frame, 4×4 supersampling and every path with analytic
+/// anti-aliasing against the 16×16 supersampled truth (see `shadeline_harness::edges`).
+fn compare_edges(file: &SceneFile, threads: usize) -> Result<(), Failure> {
+    let (scene, w, h) = (&file.scene, file.width, file.height);
+    let truth =
+        edges::box_filtered(scene, w, h, edges::TRUTH_SAMPLES, threads).map_err(Failure::frame)?;
+    let supersampled: Vec<_> = edges::box_filtered(scene, w, h, edges::SUPERSAMPLES, threads)
+        .map_err(Failure::frame)?
+        .iter()
+        .map(|p| p.color)
+        .collect();
+    let render = |frame: Box<dyn paths::Frame>| frame.render_rgb(threads).map_err(Failure::frame);
+    let prepare_failed = |e: PrepareError| Failure::input(format!("error: {e}"));
+    let mut rows = Vec::new();
+    let mut push = |method: String, rgb: &[shadeline::Rgb888]| {
+        if let Some(stats) = edges::edge_stats(&truth, rgb) {
+            rows.push(EdgeRow { method, stats });
+        }
+    };
+    let scalar = paths::find("scalar").expect("the scalar path is listed");
+    let sharp = (scalar.prepare)(scene, w, h, Options::default()).map_err(prepare_failed)?;
+    push("sharp (scalar)".into(), &render(sharp)?);
+    let n = edges::SUPERSAMPLES;
+    push(format!("{n}×{n} supersampling"), &supersampled);
+    for path in PATHS {
+        match (path.prepare)(scene, w, h, Options { antialias: true }) {
+            Ok(frame) => push(format!("analytic ({})", path.name), &render(frame)?),
+            // A path without anti-aliasing has no row in this table.
+            Err(PrepareError::NoAntialiasing(_)) => {}
+            Err(e) => return Err(prepare_failed(e)),
+        }
+    }
+    let t = edges::TRUTH_SAMPLES;
+    println!("\nsilhouettes against the {t}×{t} supersampled truth (8-bit levels):");
+    if rows.is_empty() {
+        println!("the frame has no silhouette pixels");
+    } else {
+        print!("{}", edges::edge_table(&rows));
+    }
     Ok(())
 }

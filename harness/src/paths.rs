@@ -7,7 +7,8 @@
 use crate::rows::{render_rows, render_rows_into, FrameError};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
 use shadeline::{
-    HitRecord, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar, Simd4, Simd8,
+    FloatPath, HitRecord, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar, Simd4,
+    Simd8,
 };
 
 /// A frame prepared on some path, rendered whole into a new buffer on `threads` threads.
@@ -48,8 +49,45 @@ impl<R: Render + Sync> Frame for R {
     }
 }
 
+/// How a frame is rendered beyond its scene and size.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Options {
+    /// Analytic anti-aliasing of the silhouettes (the float paths' `with_antialiasing`).
+    pub antialias: bool,
+}
+
+/// Why a path cannot prepare a frame.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PrepareError {
+    /// The core refused the scene or the size.
+    Render(RenderError),
+    /// The path has no anti-aliasing.
+    NoAntialiasing(&'static str),
+}
+
+impl From<RenderError> for PrepareError {
+    fn from(e: RenderError) -> Self {
+        PrepareError::Render(e)
+    }
+}
+
+impl std::fmt::Display for PrepareError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            PrepareError::Render(e) => e.fmt(f),
+            PrepareError::NoAntialiasing(path) => write!(
+                f,
+                "antialias: the {path} path has no anti-aliasing (the float paths scalar, \
+                 simd4 and simd8 have it)"
+            ),
+        }
+    }
+}
+
+impl std::error::Error for PrepareError {}
+
 /// Prepares a scene at a size on one path.
-pub type Prepare = fn(&FileScene, u32, u32) -> Result<Box<dyn Frame>, RenderError>;
+pub type Prepare = fn(&FileScene, u32, u32, Options) -> Result<Box<dyn Frame>, PrepareError>;
 
 /// One path: its name on the command line and in reports, and how to prepare a frame on it.
 #[derive(Clone, Copy)]
@@ -69,8 +107,21 @@ impl std::fmt::Debug for Path {
 /// Boxes a prepared frame of any path.
 fn boxed<R: Render + Sync + 'static>(
     frame: Result<R, RenderError>,
-) -> Result<Box<dyn Frame>, RenderError> {
+) -> Result<Box<dyn Frame>, PrepareError> {
     Ok(Box::new(frame?))
+}
+
+/// A float path's frame with the options applied.
+fn float<W: FloatPath + Sync + 'static>(
+    s: &FileScene,
+    w: u32,
+    h: u32,
+    options: Options,
+) -> Result<Box<dyn Frame>, PrepareError>
+where
+    W::Lane: Sync,
+{
+    boxed(Prepared::<W, S, L>::new(s, w, h).map(|f| f.with_antialiasing(options.antialias)))
 }
 
 const S: usize = MAX_SPHERES;
@@ -78,16 +129,13 @@ const L: usize = MAX_LIGHTS;
 
 /// Every path, narrowest first. `render`'s default is [`SIMD_ALIAS`], the widest SIMD path.
 pub const PATHS: &[Path] = &[
-    path("scalar", |s, w, h| {
-        boxed(Prepared::<Scalar, S, L>::new(s, w, h))
-    }),
-    path("simd4", |s, w, h| {
-        boxed(Prepared::<Simd4, S, L>::new(s, w, h))
-    }),
-    path("simd8", |s, w, h| {
-        boxed(Prepared::<Simd8, S, L>::new(s, w, h))
-    }),
-    path("fixed", |s, w, h| {
+    path("scalar", float::<Scalar>),
+    path("simd4", float::<Simd4>),
+    path("simd8", float::<Simd8>),
+    path("fixed", |s, w, h, options| {
+        if options.antialias {
+            return Err(PrepareError::NoAntialiasing("fixed"));
+        }
         boxed(PreparedFixed::<S, L>::new(s, w, h))
     }),
 ];

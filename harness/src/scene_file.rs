@@ -5,7 +5,7 @@
 //!
 //! | table | keys |
 //! |---|---|
-//! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear |
+//! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear, optional `antialias = true` (analytic edges; float paths) |
 //! | `[camera]` | `position`, `look_at`, `up` = `[x, y, z]`, `vfov` (degrees) |
 //! | `[[light]]` | `type = "distant"` with `direction`, or `type = "point"` with `position`; both with `color`, `intensity` |
 //! | `[[sphere]]` | `center`, `radius`, `albedo`, `kd`, `ks`, `shininess`, optional `model` (below) |
@@ -50,6 +50,8 @@ pub struct SceneFile {
     pub width: u32,
     /// `image.height`, in pixels.
     pub height: u32,
+    /// `image.antialias`: whether silhouettes are anti-aliased (false when absent).
+    pub antialias: bool,
 }
 
 /// Why a scene file was refused: where (1-based line and column, in characters), which key,
@@ -125,6 +127,8 @@ struct RawImage {
     width: u32,
     height: u32,
     background: [f64; 3],
+    #[serde(default)]
+    antialias: bool,
 }
 
 #[derive(Deserialize)]
@@ -371,6 +375,7 @@ fn build(raw: &RawFile, place: &Placer<'_>) -> Result<SceneFile, SceneFileError>
         scene,
         width,
         height,
+        antialias: raw.image.antialias,
     })
 }
 
@@ -585,5 +590,6 @@ fn to_file_scene<const S: usize, const L: usize>(
         scene,
         width,
         height,
+        antialias: false,
     })
 }
