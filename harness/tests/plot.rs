@@ -274,3 +274,26 @@ fn a_scene_file_and_a_preset_together_or_an_unwritable_output_are_refused() {
     assert_eq!(out.status.code(), Some(1), "{}", stderr(&out));
     assert!(stderr(&out).starts_with("missing/lobes.svg: error: cannot write"));
 }
+
+/// The README's two lobe plots are what the binary writes now: after a change to the plot,
+/// regenerate them with the commands under their captions (README, "Lobe plots").
+#[test]
+fn the_readme_lobe_plots_are_current() {
+    let docs = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/");
+    for (file, args) in [
+        ("lobes-exponent-series.svg", &["--sphere", "2"][..]),
+        (
+            "lobes-materials.svg",
+            &["--preset", "materials", "--sphere", "1"][..],
+        ),
+    ] {
+        let committed = std::fs::read_to_string(format!("{docs}{file}")).unwrap();
+        let readme = include_str!("../../README.md");
+        let command = format!("shadeline plot {} -o docs/{file}", args.join(" "));
+        assert!(readme.contains(&command), "the README shows `{command}`");
+        assert!(
+            plot_svg(args, file) == committed,
+            "docs/{file} is out of date: regenerate it with `{command}`"
+        );
+    }
+}
