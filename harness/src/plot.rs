@@ -141,6 +141,10 @@ pub struct Lobe {
 
 impl Lobe {
     /// The sample with the largest [`LobeSample::total`] (the first of equal ones).
+    ///
+    /// # Panics
+    ///
+    /// If `samples` is empty, which a lobe from [`sample_lobe`] never is.
     pub fn peak(&self) -> LobeSample {
         self.samples
             .iter()
@@ -439,6 +443,9 @@ fn draw_lobe(area: &Area<'_>, lobe: &Lobe, title: &str) -> Result<(), PlotError>
                 grid,
             )))
             .map_err(draw_error)?;
+        if k == 0 {
+            continue; // the normal's label stands there
+        }
         chart
             .draw_series(std::iter::once(Text::new(
                 format!("{theta}°"),
@@ -457,27 +464,54 @@ fn draw_lobe(area: &Area<'_>, lobe: &Lobe, title: &str) -> Result<(), PlotError>
         )))
         .map_err(draw_error)?;
 
-    // The normal, the light and the mirror direction.
+    // The normal, the light and the mirror direction. Near the normal the light's label
+    // ends at its line and the mirror's starts at its line, so that the three do not
+    // overlap even at normal incidence.
+    let beside = |toward| {
+        if incidence > 60.0 {
+            HPos::Center
+        } else {
+            toward
+        }
+    };
     let marks = [
-        (0.0, RGBColor(90, 90, 90), "N".to_string()),
-        (-incidence, RGBColor(230, 140, 0), "light".to_string()),
-        (mirror, RGBColor(160, 60, 190), "mirror".to_string()),
+        (0.0, RGBColor(90, 90, 90), "N", 1.08, HPos::Center),
+        (
+            -incidence,
+            RGBColor(230, 140, 0),
+            "light",
+            1.17,
+            beside(HPos::Right),
+        ),
+        (
+            mirror,
+            RGBColor(160, 60, 190),
+            "mirror",
+            1.17,
+            beside(HPos::Left),
+        ),
     ];
-    for (theta, colour, name) in marks {
+    for (theta, colour, name, out, anchor) in marks {
         chart
             .draw_series(std::iter::once(PathElement::new(
                 vec![(0.0, 0.0), at(theta, 1.02 * radius)],
                 colour.stroke_width(2),
             )))
             .map_err(draw_error)?;
+        let (x, y) = at(theta, out * radius);
+        let gap = match anchor {
+            HPos::Right => -0.02 * radius,
+            HPos::Left => 0.02 * radius,
+            HPos::Center => 0.0,
+        };
         chart
             .draw_series(std::iter::once(Text::new(
                 name,
-                at(theta, 1.15 * radius),
+                (x + gap, y),
                 ("sans-serif", 15)
                     .into_font()
                     .color(&colour)
-                    .pos(Pos::new(HPos::Center, VPos::Center)),
+                    .pos(Pos::new(anchor, VPos::Center)),
             )))
             .map_err(draw_error)?;
     }
