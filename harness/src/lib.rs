@@ -4,7 +4,8 @@
 //! - [`scene_file`]: the TOML scene format → a validated scene, with located errors
 //!   ([`toml_keys`] finds the keys);
 //! - [`paths`]: the list of rendering paths; [`rows`]: rendering rows on threads;
-//! - [`compare`]: measuring the paths against the `f64` reference; [`image`]: PNG output.
+//! - [`compare`]: measuring the paths against the `f64` reference; [`image`]: PNG output;
+//! - [`plot`]: lobe plots, a material's BRDF and the scene's `cos^n` curves as SVG.
 
 #![warn(missing_docs)]
 
@@ -12,6 +13,7 @@ pub mod compare;
 pub mod edges;
 pub mod image;
 pub mod paths;
+pub mod plot;
 pub mod rows;
 pub mod scene_file;
 pub mod toml_keys;

@@ -6,19 +6,24 @@
 //!                   [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
 //!                   [--threads N] [--width W] [--height H] [--repeat N]
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
+//! shadeline plot    [SCENE.toml | --preset NAME] [--sphere N] [--incidence DEG] [-o lobes.svg]
 //! ```
 //!
 //! `render` uses the widest SIMD path unless `--path` names another (its frames are
-//! bit-identical to `scalar`'s); `compare` runs every path.
+//! bit-identical to `scalar`'s); `compare` runs every path; `plot` draws sphere `N`'s BRDF
+//! and the scene's `cos^n` curves to an SVG ([`shadeline_harness::plot`]).
 //!
 //! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
-//! 768×432). Without a scene file or preset both use the built-in exponent series (the numbers of
+//! 768×432). Without a scene file or preset all three use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file is reported as one line
 //! `FILE:LINE:COL: error: …` on stderr, with exit code 2; so is a bad size or a frame too
 //! large for the memory, as one `error: …` line (the message names the size; buffers are
 //! allocated fallibly), and an unknown `--path` is an `error:` naming it, exit code 2. The
 //! output file is opened before rendering: an output that cannot be written is exit code 1,
-//! before the render rather than after it.
+//! before the render rather than after it. `plot` draws first (it takes milliseconds) and
+//! writes after, so that a `--sphere` the scene does not have (exit code 2, naming
+//! `--sphere` and the number of spheres) leaves an existing SVG alone; an `--incidence`
+//! outside `[0, 90)` is refused with the other bad arguments, exit code 2.
 
 use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
@@ -27,6 +32,7 @@ use shadeline_harness::compare::{self, Row};
 use shadeline_harness::edges::{self, EdgeRow};
 use shadeline_harness::image::PngFile;
 use shadeline_harness::paths::{self, Options, Path, PrepareError, PATHS};
+use shadeline_harness::plot::{self, PlotError};
 use shadeline_harness::rows::{check_memory, default_threads, new_frame, FrameError};
 use shadeline_harness::scene_file::{
     builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
@@ -69,17 +75,39 @@ enum Command {
         #[arg(short, long, default_value = "compare.png")]
         output: PathBuf,
     },
+    /// Plot a sphere's BRDF in the plane of incidence (polar, f·cos θ_o) and the lesson's
+    /// max(0, cos α)^n curves for every shininess in the scene, to one SVG.
+    Plot {
+        #[command(flatten)]
+        scene: SceneChoice,
+        /// The sphere whose material is plotted, counted from 0 in the scene's order.
+        #[arg(long, value_name = "N", default_value_t = 0, allow_negative_numbers = true, value_parser = sphere_index)]
+        sphere: usize,
+        /// The light's angle from the normal, in degrees: at least 0 and below 90.
+        #[arg(long, value_name = "DEG", default_value_t = plot::DEFAULT_INCIDENCE, allow_negative_numbers = true, value_parser = incidence)]
+        incidence: f64,
+        /// Where to write the SVG.
+        #[arg(short, long, default_value = "lobes.svg")]
+        output: PathBuf,
+    },
 }
 
-/// What to render, how large, on how many threads.
+/// Which scene: a file, a preset, or (with neither) the built-in exponent series.
 #[derive(Args, Debug)]
-struct Input {
+struct SceneChoice {
     /// A scene file (TOML); without one (and without `--preset`), the built-in exponent series.
     scene: Option<PathBuf>,
     /// A built-in scene instead of a file: `exponent-series` or `materials` (the gallery of
     /// reflection models).
     #[arg(long, value_parser = PossibleValuesParser::new(PRESETS))]
     preset: Option<String>,
+}
+
+/// What to render, how large, on how many threads.
+#[derive(Args, Debug)]
+struct Input {
+    #[command(flatten)]
+    scene: SceneChoice,
     /// Image width in pixels, instead of the scene file's.
     #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     width: Option<u32>,
@@ -103,6 +131,22 @@ fn pixels(value: &str) -> Result<u32, String> {
     value
         .parse()
         .map_err(|_| format!("a size is a whole number of pixels, from 1 to {MAX_DIMENSION}"))
+}
+
+/// `--sphere`: a sphere's place in the scene, from 0. Whether the scene has it is checked once
+/// the scene is read.
+fn sphere_index(value: &str) -> Result<usize, String> {
+    value
+        .parse()
+        .map_err(|_| "a sphere is a whole number, from 0 for the scene's first sphere".to_string())
+}
+
+/// `--incidence`: degrees from the normal, in `[0, 90)`.
+fn incidence(value: &str) -> Result<f64, String> {
+    let refused =
+        || "an incidence is in degrees from the normal, at least 0 and below 90".to_string();
+    let degrees: f64 = value.parse().map_err(|_| refused())?;
+    plot::check_incidence(degrees).map_err(|_| refused())
 }
 
 /// A failure: the message (already naming the file or option) and the exit code.
@@ -148,6 +192,12 @@ fn main() -> ExitCode {
             repeat,
         } => render(&input, &path, &output, usize::from(repeat)),
         Command::Compare { input, output } => run_compare(&input, &output),
+        Command::Plot {
+            scene,
+            sphere,
+            incidence,
+            output,
+        } => run_plot(&scene, sphere, incidence, &output),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -172,8 +222,20 @@ impl Input {
 
     /// Reads and checks the scene, applying `--width`/`--height`.
     fn load(&self) -> Result<SceneFile, Failure> {
+        let mut file = self.scene.load()?;
+        file.width = self.width.unwrap_or(file.width);
+        file.height = self.height.unwrap_or(file.height);
+        check_size(&file.scene, file.width, file.height)
+            .map_err(|e| Failure::input(format!("error: --width/--height: {e}")))?;
+        Ok(file)
+    }
+}
+
+impl SceneChoice {
+    /// Reads and checks the scene file, or builds the preset or the exponent series.
+    fn load(&self) -> Result<SceneFile, Failure> {
         let failed = |e: shadeline::SceneError| Failure::input(format!("error: {e}"));
-        let mut file = match (&self.scene, &self.preset) {
+        Ok(match (&self.scene, &self.preset) {
             (Some(path), Some(name)) => {
                 return Err(Failure::input(format!(
                     "error: both a scene file ({}) and --preset {name} were given: give one \
@@ -186,12 +248,7 @@ impl Input {
                 .ok_or_else(|| Failure::input(format!("error: unknown preset `{name}`")))?
                 .map_err(failed)?,
             (None, None) => builtin_scene().map_err(failed)?,
-        };
-        file.width = self.width.unwrap_or(file.width);
-        file.height = self.height.unwrap_or(file.height);
-        check_size(&file.scene, file.width, file.height)
-            .map_err(|e| Failure::input(format!("error: --width/--height: {e}")))?;
-        Ok(file)
+        })
     }
 }
 
@@ -360,5 +417,34 @@ fn compare_edges(file: &SceneFile, threads: usize) -> Result<(), Failure> {
     } else {
         print!("{}", edges::edge_table(&rows));
     }
+    Ok(())
+}
+
+/// Writes the lobe plot of sphere `sphere` (see [`plot::figure`]). The figure is drawn (in
+/// milliseconds) before the output is created, so a bad `--sphere` leaves an existing file as
+/// it was.
+fn run_plot(
+    choice: &SceneChoice,
+    sphere: usize,
+    incidence: f64,
+    output: &std::path::Path,
+) -> Result<(), Failure> {
+    let file = choice.load()?;
+    let figure = plot::figure(file.scene.spheres(), sphere, incidence).map_err(|e| match e {
+        PlotError::NoSuchSphere { .. } => Failure::input(format!("error: --sphere: {e}")),
+        PlotError::Incidence(_) => Failure::input(format!("error: --incidence: {e}")),
+        PlotError::Draw(_) => Failure::output(format!("{}: error: {e}", output.display())),
+    })?;
+    std::fs::write(output, &figure.svg).map_err(write_failed(output))?;
+    let curves = figure.exponents.len();
+    println!(
+        "sphere {sphere} ({}), light at {incidence}° from the normal: f·cos θ_o peaks at \
+         θ_o = {:.2}° (mirror direction {}°); {curves} curve{} of cos^n -> {}",
+        figure.material,
+        figure.peak.theta,
+        plot::mirror_angle(incidence),
+        if curves == 1 { "" } else { "s" },
+        output.display()
+    );
     Ok(())
 }
