@@ -1,7 +1,8 @@
 //! Criterion benchmarks of the float paths, single thread, reported as Mpix/s.
 //!
 //! - `frame/*`: the exponent series at 320×240 and 1024×747, every width, with and without
-//!   scanline spans (without spans is the naive renderer: every sphere at every pixel).
+//!   scanline spans (without spans is the naive renderer: every sphere at every pixel), and
+//!   with analytic anti-aliasing of the silhouettes (`antialiased`).
 //! - `kernel/*`: the shading kernel on fully covered packets: one sphere fills the view, so
 //!   every packet is shaded and the row driver's share is negligible.
 //! - `lights/*`, `spheres/*`, `size/*`: how cost scales with lights, spheres and pixels.
@@ -22,26 +23,29 @@ fn bench_paths<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
     (w, h): (u32, u32),
     id: &str,
-    spans: bool,
+    (spans, antialias): (bool, bool),
 ) {
     let mut g = c.benchmark_group(group);
     g.throughput(Throughput::Elements(w as u64 * h as u64));
     let mut buf = vec![Rgb888::default(); w as usize * h as usize];
     let scalar = Prepared::<Scalar, S, L>::new(scene, w, h)
         .unwrap()
-        .with_spans(spans);
+        .with_spans(spans)
+        .with_antialiasing(antialias);
     g.bench_function(BenchmarkId::new("scalar", id), |b| {
         b.iter(|| render(&scalar, &mut buf))
     });
     let simd4 = Prepared::<Simd4, S, L>::new(scene, w, h)
         .unwrap()
-        .with_spans(spans);
+        .with_spans(spans)
+        .with_antialiasing(antialias);
     g.bench_function(BenchmarkId::new("simd4", id), |b| {
         b.iter(|| render(&simd4, &mut buf))
     });
     let simd8 = Prepared::<Simd8, S, L>::new(scene, w, h)
         .unwrap()
-        .with_spans(spans);
+        .with_spans(spans)
+        .with_antialiasing(antialias);
     g.bench_function(BenchmarkId::new("simd8", id), |b| {
         b.iter(|| render(&simd8, &mut buf))
     });
@@ -116,8 +120,31 @@ fn benches(c: &mut Criterion) {
     let series = exponent_series().unwrap();
     for size in [(320, 240), (1024, 747)] {
         let id = format!("{}x{}", size.0, size.1);
-        bench_paths(c, "frame/exponent-series/spans", &series, size, &id, true);
-        bench_paths(c, "frame/exponent-series/naive", &series, size, &id, false);
+        let group = "frame/exponent-series";
+        bench_paths(
+            c,
+            &format!("{group}/spans"),
+            &series,
+            size,
+            &id,
+            (true, false),
+        );
+        bench_paths(
+            c,
+            &format!("{group}/naive"),
+            &series,
+            size,
+            &id,
+            (false, false),
+        );
+        bench_paths(
+            c,
+            &format!("{group}/antialiased"),
+            &series,
+            size,
+            &id,
+            (true, true),
+        );
     }
     bench_paths(
         c,
@@ -125,7 +152,7 @@ fn benches(c: &mut Criterion) {
         &covered(1),
         (320, 240),
         "1-light",
-        true,
+        (true, false),
     );
     for lights in [1, 2, 4, 8] {
         bench_paths(
@@ -134,7 +161,7 @@ fn benches(c: &mut Criterion) {
             &covered(lights),
             (320, 240),
             &lights.to_string(),
-            true,
+            (true, false),
         );
     }
     for spheres in [1, 5, 16, 32] {
@@ -144,12 +171,12 @@ fn benches(c: &mut Criterion) {
             &grid(spheres),
             (320, 240),
             &spheres.to_string(),
-            true,
+            (true, false),
         );
     }
     for size in [(160, 120), (320, 240), (640, 480), (1280, 960)] {
         let id = format!("{}x{}", size.0, size.1);
-        bench_paths(c, "size/exponent-series", &series, size, &id, true);
+        bench_paths(c, "size/exponent-series", &series, size, &id, (true, false));
     }
 }
 

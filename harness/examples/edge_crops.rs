@@ -1,0 +1,68 @@
+//! Writes the crops of the README's anti-aliasing section: a silhouette of the exponent series
+//! at the size of a 320×240 display, sharp, with analytic anti-aliasing, and the 16×16
+//! supersampled truth it is measured against, magnified 8× (nearest neighbour) so single
+//! pixels show.
+//!
+//! ```sh
+//! cargo run --release -p shadeline-harness --example edge_crops -- [OUT_DIR] [--full]
+//! ```
+//!
+//! Writes `edges-sharp.png`, `edges-analytic.png` and `edges-supersampled.png` into `OUT_DIR`
+//! (default `docs`); `--full` also writes each whole frame, to choose the crop.
+
+use shadeline::{Prepared, Render, Rgb888, Scalar};
+use shadeline_harness::edges::{box_filtered, TRUTH_SAMPLES};
+use shadeline_harness::image::RgbImage;
+use shadeline_harness::scene_file::{builtin_scene, MAX_LIGHTS, MAX_SPHERES};
+use std::path::PathBuf;
+
+/// The frame rendered, and the crop taken from it: `(x, y, width, height)` in pixels.
+const FRAME: (u32, u32) = (320, 240);
+const CROP: (u32, u32, u32, u32) = (100, 88, 40, 30);
+/// Magnification of the crop.
+const ZOOM: u32 = 8;
+
+fn main() -> Result<(), Box<dyn std::error::Error>> {
+    let args: Vec<String> = std::env::args().skip(1).collect();
+    let full = args.iter().any(|a| a == "--full");
+    let dir = args
+        .iter()
+        .find(|a| !a.starts_with("--"))
+        .map_or_else(|| PathBuf::from("docs"), PathBuf::from);
+    let file = builtin_scene()?;
+    let (w, h) = FRAME;
+    let frame = Prepared::<Scalar, MAX_SPHERES, MAX_LIGHTS>::new(&file.scene, w, h)?;
+    let mut sharp = vec![Rgb888::default(); (w * h) as usize];
+    frame.render_frame(&mut sharp)?;
+    let mut analytic = sharp.clone();
+    frame
+        .with_antialiasing(true)
+        .render_frame(&mut analytic)?;
+    let truth: Vec<Rgb888> = box_filtered(&file.scene, w, h, TRUTH_SAMPLES, 2)?
+        .iter()
+        .map(|p| p.color)
+        .collect();
+    let (cx, cy, cw, ch) = CROP;
+    for (name, pixels) in [
+        ("edges-sharp", &sharp),
+        ("edges-analytic", &analytic),
+        ("edges-supersampled", &truth),
+    ] {
+        if full {
+            let path = dir.join(format!("{name}-full.png"));
+            RgbImage::from_pixels(w, h, pixels).write_png(&path)?;
+        }
+        let mut crop = RgbImage::new(cw * ZOOM, ch * ZOOM);
+        for y in 0..ch * ZOOM {
+            let src = ((cy + y / ZOOM) * w + cx) as usize;
+            let row: Vec<Rgb888> = (0..cw * ZOOM)
+                .map(|x| pixels[src + (x / ZOOM) as usize])
+                .collect();
+            crop.paste(0, y, cw * ZOOM, &row);
+        }
+        let path = dir.join(format!("{name}.png"));
+        crop.write_png(&path)?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
+}
