@@ -35,9 +35,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let mut sharp = vec![Rgb888::default(); (w * h) as usize];
     frame.render_frame(&mut sharp)?;
     let mut analytic = sharp.clone();
-    frame
-        .with_antialiasing(true)
-        .render_frame(&mut analytic)?;
+    frame.with_antialiasing(true).render_frame(&mut analytic)?;
     let truth: Vec<Rgb888> = box_filtered(&file.scene, w, h, TRUTH_SAMPLES, 2)?
         .iter()
         .map(|p| p.color)
