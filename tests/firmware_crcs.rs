@@ -47,6 +47,20 @@ fn scalar_crc_matches_the_firmware_constant() {
 }
 
 #[test]
+fn antialiased_scalar_crc_matches_the_firmware_constant() {
+    let scene = exponent_series().expect("built-in scene is valid");
+    let path = Prepared::<Scalar>::new(&scene, expected::WIDTH, expected::HEIGHT)
+        .unwrap()
+        .with_antialiasing(true);
+    let crc = rgb565_crc32(&frame(&path));
+    assert_eq!(
+        crc,
+        expected::SCALAR_AA_RGB565_CRC32,
+        "host anti-aliased scalar CRC is {crc:#010x}: update firmware/expected.rs"
+    );
+}
+
+#[test]
 fn fixed_crc_matches_the_firmware_constant() {
     let scene = exponent_series().expect("built-in scene is valid");
     let path = PreparedFixed::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();

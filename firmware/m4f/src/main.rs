@@ -1,7 +1,9 @@
 //! shadeline on a Cortex-M4F (QEMU `mps2-an386`): the exponent series at 320×240 into a full
 //! RGB565 framebuffer in RAM (150 KiB of the board's 4 MiB), on the scalar `f32` path (hard
 //! float) and the fixed-point path, each reported with its CRC, instruction count and stack
-//! high-water mark over semihosting. Exits 0 only if every CRC matches.
+//! high-water mark over semihosting. Exits 0 only if every CRC matches. With the feature
+//! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
+//! (`scalar-aa`).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -30,6 +32,8 @@ fn main() -> ! {
     static mut SCENE: Option<Scene> = None;
     static mut SCALAR: Option<Prepared<Scalar>> = None;
     static mut FIXED: PreparedFixed = PreparedFixed::EMPTY;
+    #[cfg(feature = "antialias")]
+    static mut SCALAR_AA: Option<Prepared<Scalar>> = None;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -56,6 +60,25 @@ fn main() -> ! {
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-scalar\n");
+            session.fail();
+        }
+    }
+    #[cfg(feature = "antialias")]
+    match session.build(SCALAR_AA, || {
+        Prepared::<Scalar>::new(scene, WIDTH, HEIGHT).map(|p| p.with_antialiasing(true))
+    }) {
+        (Some(path), prepare) => session.run(
+            "scalar-aa",
+            path,
+            Sink::Frame(FRAME),
+            prepare,
+            Expected {
+                crc: common::expected::SCALAR_AA_RGB565_CRC32,
+                covered: SCALAR_COVERED,
+            },
+        ),
+        (None, _) => {
+            session.note("shadeline-fw error=prepare-scalar-aa\n");
             session.fail();
         }
     }
