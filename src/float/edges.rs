@@ -212,6 +212,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             // |F|/|∇F| < pixel/√2 (no straight edge farther away crosses the pixel), with
             // ∇F = 2g: F² < 2·pixel²·|g|². Centre in front of the eye.
             let near = W::Lane::and((fk * fk).lt(band * (gxk * gxk + gyk * gyk)), zero.lt(along));
+            // …and within the larger sphere the spans are computed for: the first-order
+            // distance can underrate the true one, and a pixel outside the spans would be
+            // near in a packet that lists the sphere and not in one that does not.
+            let in_spans = (W::Lane::splat(o.spans_k) * uu).le(along * along);
+            let near = W::Lane::and(near, in_spans);
             let kf = W::Lane::splat(k as f32);
             let excluded = W::Lane::and(exclude.le(kf), kf.le(exclude));
             let near = W::Lane::and_not(near, excluded);

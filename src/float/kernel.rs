@@ -130,7 +130,15 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         filter: Option<Filter<W::Lane>>,
         record_hits: bool,
     ) -> (Packet<W::Lane>, W::Lane) {
-        let hit = self.hit(d, candidates, filter);
+        let mut hit = self.hit(d, candidates, filter);
+        if filter.is_some() {
+            // An edge's shading takes a lane whose ray misses the edge's sphere at the ray's
+            // closest approach, off the sphere: by rounding, or by far where a pixel is large
+            // against the sphere and the first-order step toward the outline overshoots. The
+            // casters of `Scene::shadow_casters` hold for points on the sphere only, so these
+            // shadow rays test every sphere.
+            hit.spheres = u32::MAX;
+        }
         let bg = self.background;
         let background = Vec3::splat(Vec3::new(bg.r, bg.g, bg.b));
         let any_hit = W::Lane::splat(0.0).le(hit.id);

@@ -86,9 +86,12 @@ pub(crate) struct Outline {
     /// `oc·right` and `oc·up`: with `k`, the gradient of `F`.
     pub oc_right: f32,
     pub oc_up: f32,
-    /// `r²` of a sphere whose silhouette lies at least one pixel outside this one's: the
-    /// anti-aliased frame's spans use it, so they hold every pixel the outline's ramp reaches.
+    /// `r²` of a sphere whose silhouette lies at least 1.5 pixels outside this one's: the
+    /// anti-aliased frame's spans use it.
     pub spans_radius_sq: f32,
+    /// `|oc|² − spans_radius_sq`: a pixel counts as near the outline only if its ray meets
+    /// that larger sphere (`spans_k·|u|² ≤ (oc·u)²`), so every such pixel lies in the spans.
+    pub spans_k: f32,
 }
 
 /// A light's per-frame constants.
@@ -334,6 +337,7 @@ impl Outline {
             oc_right: oc.dot(right),
             oc_up: oc.dot(up),
             spans_radius_sq,
+            spans_k: d2 - spans_radius_sq,
         }
     }
 }
