@@ -3,7 +3,9 @@
 //! bit-identical rows — linear colour to the last bit, hit records, 8-bit and 5-6-5 pixels,
 //! and with the encoding Rgb888, Rgb565, Bgr565, Gray8 and their display bytes — and turning
 //! the scanline spans off (every packet tests every sphere) changes no bit either, so the
-//! spans are conservative.
+//! spans are conservative. The same holds with anti-aliased edges on (`with_antialiasing`):
+//! every width gives the scalar bits, and so do the spans off, so the anti-aliased frame's
+//! widened spans hold every pixel an outline reaches.
 //!
 //! The fixed-point path, for scenes it accepts (it refuses the others with
 //! `OutOfFixedRange`; refusals are counted), renders without a panic; on *well-conditioned*
@@ -246,16 +248,17 @@ fn assert_bit_identical(got: &Row, want: &Row, what: &str) {
     assert_eq!(got.bytes, want.bytes, "{what}: byte rows {e:?}");
 }
 
-fn without_spans<R: Render + Clone>(
+/// `frame`'s rows are `want`'s, bit for bit (`what` names the frame in a failure).
+fn assert_same_rows<R: Render + Clone>(
     frame: &R,
     rows: [u32; 3],
     encoding: Encoding,
-    scalar: &[Row],
-    name: &str,
+    want: &[Row],
+    what: &str,
 ) {
-    for (y, want) in rows.iter().zip(scalar) {
+    for (y, want) in rows.iter().zip(want) {
         let got = render_row(frame, *y, encoding);
-        assert_bit_identical(&got, want, &format!("{name} without spans, row {y}"));
+        assert_bit_identical(&got, want, &format!("{what}, row {y}"));
     }
 }
 
@@ -283,10 +286,38 @@ fuzz_target!(|input: SceneInput| {
     for_each_path(&scene, width, height, &mut agree);
     let want = &agree.scalar;
     let naive = scalar.clone().with_spans(false);
-    without_spans(&naive, rows, encoding, want, "scalar");
+    assert_same_rows(&naive, rows, encoding, want, "scalar without spans");
     let simd4 = Prepared::<Simd4, SPHERES, LIGHTS>::new(&scene, width, height).unwrap();
-    without_spans(&simd4.with_spans(false), rows, encoding, want, "simd4");
     let simd8 = Prepared::<Simd8, SPHERES, LIGHTS>::new(&scene, width, height).unwrap();
-    without_spans(&simd8.with_spans(false), rows, encoding, want, "simd8");
+    let simd4_naive = simd4.clone().with_spans(false);
+    assert_same_rows(&simd4_naive, rows, encoding, want, "simd4 without spans");
+    let simd8_naive = simd8.clone().with_spans(false);
+    assert_same_rows(&simd8_naive, rows, encoding, want, "simd8 without spans");
+    // Anti-aliased edges: the same bits at every width, and the same with the spans off
+    // (the widened spans hold every pixel an outline's ramp reaches).
+    let smooth = scalar.with_antialiasing(true);
+    let want: Vec<Row> = rows
+        .iter()
+        .map(|&y| render_row(&smooth, y, encoding))
+        .collect();
+    let smooth_naive = smooth.with_spans(false);
+    assert_same_rows(
+        &smooth_naive,
+        rows,
+        encoding,
+        &want,
+        "scalar antialiased, no spans",
+    );
+    let simd4 = simd4.with_antialiasing(true);
+    assert_same_rows(&simd4, rows, encoding, &want, "simd4 antialiased");
+    let simd8 = simd8.with_antialiasing(true);
+    assert_same_rows(&simd8, rows, encoding, &want, "simd8 antialiased");
+    assert_same_rows(
+        &simd8.with_spans(false),
+        rows,
+        encoding,
+        &want,
+        "simd8 antialiased, no spans",
+    );
     COUNTS.check();
 });
