@@ -40,7 +40,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         .iter()
         .map(|p| p.color)
         .collect();
-    let (cx, cy, cw, ch) = CROP;
     for (name, pixels) in [
         ("edges-sharp", &sharp),
         ("edges-analytic", &analytic),
@@ -50,14 +49,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let path = dir.join(format!("{name}-full.png"));
             RgbImage::from_pixels(w, h, pixels).write_png(&path)?;
         }
-        let mut crop = RgbImage::new(cw * ZOOM, ch * ZOOM);
-        for y in 0..ch * ZOOM {
-            let src = ((cy + y / ZOOM) * w + cx) as usize;
-            let row: Vec<Rgb888> = (0..cw * ZOOM)
-                .map(|x| pixels[src + (x / ZOOM) as usize])
-                .collect();
-            crop.paste(0, y, cw * ZOOM, &row);
-        }
+        let crop = RgbImage::zoomed_crop(pixels, w, CROP, ZOOM);
         let path = dir.join(format!("{name}.png"));
         crop.write_png(&path)?;
         println!("wrote {}", path.display());

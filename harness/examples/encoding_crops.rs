@@ -42,7 +42,6 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let scene = exponent_series()?;
     let (w, h) = FRAME;
     let frame = Prepared::<Scalar>::new(&scene, w, h)?;
-    let (cx, cy, cw, ch) = CROP;
     for (name, encoding) in [
         ("encoding-linear", Encoding::LINEAR),
         ("encoding-linear-dithered", Encoding::LINEAR.dithered()),
@@ -57,14 +56,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let path = dir.join(format!("{name}-full.png"));
             RgbImage::from_pixels(w, h, &wide).write_png(&path)?;
         }
-        let mut crop = RgbImage::new(cw * ZOOM, ch * ZOOM);
-        for y in 0..ch * ZOOM {
-            let src = ((cy + y / ZOOM) * w + cx) as usize;
-            let row: Vec<Rgb888> = (0..cw * ZOOM)
-                .map(|x| wide[src + (x / ZOOM) as usize])
-                .collect();
-            crop.paste(0, y, cw * ZOOM, &row);
-        }
+        let crop = RgbImage::zoomed_crop(&wide, w, CROP, ZOOM);
         let path = dir.join(format!("{name}.png"));
         crop.write_png(&path)?;
         println!("wrote {}", path.display());

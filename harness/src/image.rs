@@ -48,6 +48,26 @@ impl RgbImage {
         }
     }
 
+    /// The `(x, y, w, h)` crop of a `width`-wide row-major frame, each pixel magnified to a
+    /// `zoom × zoom` block (nearest neighbour), so single pixels show in a document. The crop
+    /// must lie inside the frame.
+    pub fn zoomed_crop(
+        pixels: &[Rgb888],
+        width: u32,
+        (x, y, w, h): (u32, u32, u32, u32),
+        zoom: u32,
+    ) -> Self {
+        let mut image = RgbImage::new(w * zoom, h * zoom);
+        for row in 0..h * zoom {
+            let src = ((y + row / zoom) * width + x) as usize;
+            let line: Vec<Rgb888> = (0..w * zoom)
+                .map(|col| pixels[src + (col / zoom) as usize])
+                .collect();
+            image.paste(0, row, w * zoom, &line);
+        }
+        image
+    }
+
     /// Writes the image as an 8-bit RGB PNG.
     pub fn write_png(&self, path: &Path) -> io::Result<()> {
         let mut file = BufWriter::new(File::create(path)?);

@@ -5,8 +5,10 @@ use shadeline::{Model, Sphere};
 use shadeline_harness::parse_scene;
 use shadeline_harness::plot::{self, CURVE_SAMPLES, LOBE_SAMPLES, LOBE_STEP};
 use shadeline_harness::scene_file::builtin_scene;
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
+
+use common::{shadeline, stderr};
+use std::path::PathBuf;
 
 /// The exponents of the specular lobes the spheres have, distinct: lobe 0 unless the model
 /// is Lambert, and the further lobes of positive weight. Written here apart from
@@ -34,22 +36,7 @@ fn lobe_exponents(spheres: &[Sphere]) -> Vec<f32> {
 
 /// A fresh, empty directory for one test.
 fn temp_dir(test: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("shadeline-plot-{}-{test}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
-}
-
-fn shadeline(args: &[&str], dir: &Path) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_shadeline"))
-        .args(args)
-        .current_dir(dir)
-        .output()
-        .expect("the binary runs")
-}
-
-fn stderr(out: &Output) -> String {
-    String::from_utf8_lossy(&out.stderr).into_owned()
+    common::temp_dir("plot", test)
 }
 
 fn materials_path() -> String {
