@@ -23,6 +23,7 @@
 //! to the right. The light is at `θ = −incidence`, so the mirror direction is at
 //! `θ = +incidence` ([`mirror_angle`]).
 
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 use plotters::style::text_anchor::{HPos, Pos, VPos};
@@ -550,15 +551,22 @@ fn draw_lobe(area: &Area<'_>, lobe: &Lobe, title: &str) -> Result<(), PlotError>
             BLACK.filled(),
         )))
         .map_err(draw_error)?;
+    legend(&mut chart, SeriesLabelPosition::UpperLeft)
+}
+
+/// A chart of one panel: `f64` axes on the SVG backend.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws the legend of `chart`'s labelled series at `position`, in the figure's style.
+fn legend<'a>(chart: &mut Chart<'a, 'a>, position: SeriesLabelPosition) -> Result<(), PlotError> {
     chart
         .configure_series_labels()
-        .position(SeriesLabelPosition::UpperLeft)
+        .position(position)
         .background_style(WHITE.mix(0.85))
         .border_style(RGBColor(160, 160, 160))
         .label_font(("sans-serif", 14))
         .draw()
-        .map_err(draw_error)?;
-    Ok(())
+        .map_err(draw_error)
 }
 
 /// The right panel: `max(0, cos α)^n` for each exponent, with a legend.
@@ -606,14 +614,7 @@ fn draw_curves(area: &Area<'_>, exponents: &[f32]) -> Result<(), PlotError> {
             });
     }
     if !exponents.is_empty() {
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.85))
-            .border_style(RGBColor(160, 160, 160))
-            .label_font(("sans-serif", 14))
-            .draw()
-            .map_err(draw_error)?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight)?;
     }
     Ok(())
 }
