@@ -388,3 +388,40 @@ fn an_unknown_path_is_refused_naming_it() {
     assert!(err.starts_with("error:") && err.contains("simd16"), "{err}");
     assert!(!dir.join("spheres.png").exists());
 }
+
+#[test]
+fn antialias_smooths_the_float_paths_and_is_refused_on_the_fixed_path() {
+    let dir = temp_dir("antialias");
+    let size = ["--width", "96", "--height", "72"];
+    let render = |extra: &[&str], out: &str| {
+        let mut args = vec!["render", "--repeat", "1", "-o", out];
+        args.extend_from_slice(&size);
+        args.extend_from_slice(extra);
+        shadeline(&args, &dir)
+    };
+    for (extra, out) in [
+        (&[][..], "sharp.png"),
+        (&["--antialias"][..], "smooth.png"),
+        (
+            &["--antialias", "--path", "scalar"][..],
+            "smooth-scalar.png",
+        ),
+    ] {
+        let run = render(extra, out);
+        assert!(run.status.success(), "{extra:?}: {}", stderr(&run));
+    }
+    let (sharp, smooth) = (
+        read_png(&dir.join("sharp.png")),
+        read_png(&dir.join("smooth.png")),
+    );
+    assert_ne!(sharp.4, smooth.4, "--antialias changed no pixel");
+    // The widest SIMD path and the scalar path agree bit for bit with edges on too.
+    assert_eq!(smooth.4, read_png(&dir.join("smooth-scalar.png")).4);
+    let fixed = render(&["--antialias", "--path", "fixed"], "fixed.png");
+    assert_eq!(fixed.status.code(), Some(2), "{}", stderr(&fixed));
+    assert!(stderr(&fixed).contains("antialias: the fixed path has no anti-aliasing"));
+    assert!(
+        !dir.join("fixed.png").exists(),
+        "a refused render wrote its output"
+    );
+}

@@ -100,6 +100,15 @@ fn duplicate_key_is_named() {
 }
 
 #[test]
+fn antialias_is_read_off_by_default_and_checked() {
+    assert!(!parse_scene(&exponent_series_text()).unwrap().antialias);
+    let on = edited("height = 747\n", "height = 747\nantialias = true\n");
+    assert!(parse_scene(&on).unwrap().antialias);
+    let text = edited("height = 747\n", "height = 747\nantialias = \"yes\"\n");
+    assert_error(&text, "antialias", Some("image.antialias"), "boolean");
+}
+
+#[test]
 fn unknown_key() {
     let text = edited("ks = 0.1\n", "ks = 0.1\nroughness = 3\n");
     assert_error(
