@@ -10,11 +10,12 @@
 //! Writes `edges-sharp.png`, `edges-analytic.png` and `edges-supersampled.png` into `OUT_DIR`
 //! (default `docs`); `--full` also writes each whole frame, to choose the crop.
 
+mod shared;
+
 use shadeline::{Prepared, Render, Rgb888, Scalar};
 use shadeline_harness::edges::{box_filtered, TRUTH_SAMPLES};
 use shadeline_harness::image::RgbImage;
 use shadeline_harness::scene_file::{builtin_scene, MAX_LIGHTS, MAX_SPHERES};
-use std::path::PathBuf;
 
 /// The frame rendered, and the crop taken from it: `(x, y, width, height)` in pixels.
 const FRAME: (u32, u32) = (320, 240);
@@ -23,12 +24,7 @@ const CROP: (u32, u32, u32, u32) = (100, 88, 40, 30);
 const ZOOM: u32 = 8;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let full = args.iter().any(|a| a == "--full");
-    let dir = args
-        .iter()
-        .find(|a| !a.starts_with("--"))
-        .map_or_else(|| PathBuf::from("docs"), PathBuf::from);
+    let (dir, full) = shared::output_dir_and_full();
     let file = builtin_scene()?;
     let (w, h) = FRAME;
     let frame = Prepared::<Scalar, MAX_SPHERES, MAX_LIGHTS>::new(&file.scene, w, h)?;

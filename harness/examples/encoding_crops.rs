@@ -10,9 +10,10 @@
 //! `encoding-srgb-dithered.png` into `OUT_DIR` (default `docs`); `--full` also writes each
 //! whole frame, to choose the crop.
 
+mod shared;
+
 use shadeline::{exponent_series, Encoding, Prepared, Render, Rgb565, Rgb888, Scalar};
 use shadeline_harness::image::RgbImage;
-use std::path::PathBuf;
 
 /// The frame rendered, and the crop taken from it: `(x, y, width, height)` in pixels.
 const FRAME: (u32, u32) = (640, 480);
@@ -33,12 +34,7 @@ fn widen(p: Rgb565) -> Rgb888 {
 }
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
-    let args: Vec<String> = std::env::args().skip(1).collect();
-    let full = args.iter().any(|a| a == "--full");
-    let dir = args
-        .iter()
-        .find(|a| !a.starts_with("--"))
-        .map_or_else(|| PathBuf::from("docs"), PathBuf::from);
+    let (dir, full) = shared::output_dir_and_full();
     let scene = exponent_series()?;
     let (w, h) = FRAME;
     let frame = Prepared::<Scalar>::new(&scene, w, h)?;
