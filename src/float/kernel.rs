@@ -543,11 +543,7 @@ impl<T: Lane> Filter<T> {
         let f = oc - dir * b;
         let disc = radius_sq - f.dot(f);
         let touches = zero.le(disc);
-        let root = disc.max(zero).sqrt();
-        let t_near = -b - root;
-        let near = eps.lt(t_near);
-        let t = T::select(near, t_near, -b + root);
-        let offset = f + dir * T::select(near, -root, root);
+        let (t, offset) = nearer_root(b, f, disc, dir, eps);
         let left_out = T::or(is_k, is(self.also));
         let allowed = T::select(
             self.only,
@@ -582,13 +578,21 @@ pub(crate) fn nearest_hit<T: Lane>(
         // caller reads neither `t` nor `offset`).
         return (zero, T::lt(zero, zero), oc);
     };
-    let root = disc.max(zero).sqrt();
-    let t_near = -b - root;
-    let t_far = -b + root;
-    let near = eps.lt(t_near);
-    let t = T::select(near, t_near, t_far);
-    let offset = f + dir * T::select(near, -root, root);
+    let (t, offset) = nearer_root(b, f, disc, dir, eps);
     (t, T::and(touches, eps.lt(t)), offset)
+}
+
+/// From the closest-approach quantities (`b`, `f`, `disc`, see [`closest_approach`]): the
+/// near root `t = −b − √disc` where it lies beyond `eps`, the far one otherwise, and the hit
+/// point's offset from the centre, `f ∓ √disc·dir` (see [`nearest_hit`]). A negative `disc`
+/// counts as 0: the point of closest approach.
+#[inline(always)]
+fn nearer_root<T: Lane>(b: T, f: Vec3<T>, disc: T, dir: Vec3<T>, eps: T) -> (T, Vec3<T>) {
+    let root = disc.max(T::splat(0.0)).sqrt();
+    let t_near = -b - root;
+    let near = eps.lt(t_near);
+    let t = T::select(near, t_near, -b + root);
+    (t, f + dir * T::select(near, -root, root))
 }
 
 /// The closest-approach quantities of the ray `origin + t·dir` (`dir` unit) and the sphere at
