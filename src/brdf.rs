@@ -15,6 +15,8 @@
 //! | Lambert | `kd·albedo/π` | yes |
 //! | normalized Phong (Lafortune–Willems) | `kd·albedo/π + Σₖ wₖ·(nₖ + 2)/(2π)·max(0, R·V)^nₖ` | yes |
 //! | normalized Blinn-Phong | `kd·albedo/π + Σₖ wₖ·c(nₖ)·max(0, N·H)^nₖ`, `c(n) = (n + 2)(n + 4) / (8π(2^(−n/2) + n))` | yes |
+//! | Oren–Nayar (qualitative, 1994) | `kd·albedo/π·(A + B·max(0, s)/max(N·L, N·V))`, `s = L·V − (N·L)(N·V)` | yes |
+//! | GGX (Cook–Torrance) | `kd·albedo/π + ks·D(H)·V₂(L, V)·F`, `D = α²/(π((N·H)²(α² − 1) + 1)²)`, `V₂ = ½ / (N·L·√((N·V)²(1 − α²) + α²) + N·V·√((N·L)²(1 − α²) + α²))` | yes |
 //!
 //! The classic models are the lesson's code read as a BRDF: the lesson adds
 //! `ks·I·max(0, R·V)^n` to the pixel with no `cos θ_i`, so its BRDF carries `1/cos θ_i`, which
@@ -30,6 +32,36 @@
 //! `(n + 8)/(8π)`: measured with `n` from 1 to 10 000, the approximation overshoots the exact
 //! factor by up to 7.5 % (at `n ≈ 10`), so its albedo exceeds 1 at normal view; with the
 //! exact one the largest albedo over every view direction is 1 (at `V = N`).
+//!
+//! Oren–Nayar. The qualitative model of M. Oren and S. K. Nayar (*Generalization of
+//! Lambert's reflectance model*, SIGGRAPH 1994, eq. 30 without the interreflection term):
+//! `f = ρ/π·(A + B·max(0, cos(φᵢ − φₒ))·sin α·tan β)`, `α = max(θᵢ, θₒ)`,
+//! `β = min(θᵢ, θₒ)`, `A = 1 − σ²/(2(σ² + 0.33))`, `B = 0.45σ²/(σ² + 0.09)`, `σ` the
+//! roughness in radians ([`oren_nayar_ab`]). No angle is needed:
+//! `cos(φᵢ − φₒ)·sin θᵢ·sin θₒ = L·V − (N·L)(N·V) = s`, and `sin α·tan β` is
+//! `sin θᵢ·sin θₒ / cos β`, so the azimuth term is `max(0, s)/max(N·L, N·V)` — rational, with
+//! IEEE operations only. At `σ = 0`, `A = 1` and `B = 0`: Lambert. The kernel evaluates the
+//! term times `N·L` as `A·(N·L) + B·max(0, s)·(N·L/max(N·L, N·V))`, whose ratio is at most 1,
+//! so nothing overflows at grazing angles. The model is reciprocal (`s` and the `max` are
+//! symmetric) but not exactly energy conserving: its directional albedo grows toward grazing
+//! light up to `ρ(A + B/2)`, which exceeds `ρ` by up to 1.5 % (at `σ ≈ 0.2`, measured in
+//! `tests/brdf_laws.rs`) and is below `ρ` from `σ ≈ 0.33` on. Lit from behind the viewer
+//! (`L = V`), `s ≤ 0` and `f = ρA/π`: the sphere's brightness follows `N·L` times a constant
+//! smaller than Lambert's, but with a large `σ` the rim, seen at grazing angles, loses less
+//! to `cos θ` than in the Lambert model's picture — which is why the full moon looks flat.
+//!
+//! GGX. The Cook–Torrance microfacet BRDF `D·G₂·F/(4(N·L)(N·V))` with the GGX
+//! (Trowbridge–Reitz) distribution `D` of width `α = roughness²` (the perceptual
+//! remapping of Burley 2012, glTF, three.js) and Smith's height-correlated
+//! masking-shadowing `G₂ = 1/(1 + Λ(L) + Λ(V))`, `Λ(ω) = (√(1 + α²tan²θ) − 1)/2` (Heitz,
+//! *Understanding the masking-shadowing function*, JCGT 2014), folded with the `4(N·L)(N·V)`
+//! into `V₂` of the table. `D` is evaluated as `α²/(π(cos²θ_h·α² + sin²θ_h)²)` with
+//! `sin²θ_h = |N × H|²/|H|²` from a cross product, so that no `1 − cos²` cancels at the
+//! peak. The accepted roughness starts at [`MIN_GGX_ROUGHNESS`](crate::MIN_GGX_ROUGHNESS),
+//! so `α² ≥ 6.25·10⁻⁶` and every quotient is finite. Fresnel, metals and the diffuse lobe
+//! are the normalized models' (below); the single-scattering lobe loses energy at high
+//! roughness (light scattered more than once among the facets is not counted): its albedo at
+//! `F = 1` is measured against Kulla and Conty's table in `tests/brdf_laws.rs`.
 //!
 //! Fresnel and metals (the lesson: "never tint a dielectric's highlight; metals tint their
 //! reflection with their colour"). Schlick: `F = F₀ + (1 − F₀)(1 − L·H)⁵`, with `L·H = V·H`
@@ -159,6 +191,50 @@ pub fn dielectric_f0<T: Real>(ior: T) -> T {
     r * r
 }
 
+/// Oren–Nayar's `A = 1 − σ²/(2(σ² + 0.33))` and `B = 0.45σ²/(σ² + 0.09)` for the roughness
+/// `σ` in radians: `(1, 0)` at `σ = 0`, Lambert.
+#[inline(always)]
+pub fn oren_nayar_ab<T: Real>(sigma: T) -> (T, T) {
+    let s2 = sigma * sigma;
+    let a = T::splat(1.0) - T::splat(0.5) * s2 / (s2 + T::splat(0.33));
+    let b = T::splat(0.45) * s2 / (s2 + T::splat(0.09));
+    (a, b)
+}
+
+/// Oren–Nayar's diffuse factor times `N·L`: `A·(N·L) + B·max(0, s)·(N·L/max(N·L, N·V))`,
+/// `s = L·V − (N·L)(N·V)`, with `n_dot_l` and `n_dot_v` clamped at 0 (0 where both are).
+#[inline(always)]
+pub fn oren_nayar<T: Real>(a: T, b: T, n_dot_l: T, n_dot_v: T, l_dot_v: T) -> T {
+    let zero = T::splat(0.0);
+    let s = (l_dot_v - n_dot_l * n_dot_v).max(zero);
+    let t = n_dot_l.max(n_dot_v);
+    let ratio = T::select(zero.lt(t), n_dot_l / t, zero);
+    a * n_dot_l + b * s * ratio
+}
+
+/// The GGX lobe without Fresnel and weight, `D(H)·V₂(L, V)` (see the module docs), for
+/// `alpha2 = α²`: 0 where `N·H ≤ 0` or where `N·L` and `N·V` are both 0.
+#[inline(always)]
+pub fn ggx<T: Real>(alpha2: T, n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>) -> T {
+    let zero = T::splat(0.0);
+    let one = T::splat(1.0);
+    let n_dot_l = n.dot(to_light).max(zero);
+    let n_dot_v = n.dot(view).max(zero);
+    let h = to_light + view;
+    let hh = h.dot(h);
+    let n_dot_h = n.dot(h);
+    let side = n.cross(h);
+    // cos²θ_h·|H|²·α² + sin²θ_h·|H|², over |H|²: D's denominator without cancellation.
+    let q = (n_dot_h * n_dot_h * alpha2 + side.dot(side)) / hh;
+    let d = alpha2 / (T::pi() * q * q);
+    let k = one - alpha2;
+    let lambda_v = (n_dot_v * n_dot_v * k + alpha2).sqrt();
+    let lambda_l = (n_dot_l * n_dot_l * k + alpha2).sqrt();
+    let den = n_dot_l * lambda_v + n_dot_v * lambda_l;
+    let vis = T::select(zero.lt(den), T::splat(0.5) / den, zero);
+    T::select(T::and(zero.lt(n_dot_h), zero.lt(hh)), d * vis, zero)
+}
+
 /// Normalized Phong's factor `(n + 2)/(2π)`.
 #[inline(always)]
 pub fn phong_normalization<T: Real>(n: T) -> T {
@@ -199,6 +275,16 @@ pub struct Params<T> {
     pub schlick: T,
     /// 1: the diffuse lobe is multiplied by `1 − F` (dielectric with `ior`).
     pub diffuse_loss: T,
+    /// 1: the diffuse lobe is Oren–Nayar's, with `on_a` and `on_b`.
+    pub oren_nayar: T,
+    /// Oren–Nayar's `A` (1 for other models).
+    pub on_a: T,
+    /// Oren–Nayar's `B` (0 for other models).
+    pub on_b: T,
+    /// 1: the specular lobe is GGX, weighted by `weight[0] = ks`.
+    pub ggx: T,
+    /// GGX's `α² = roughness⁴` (1 for other models).
+    pub alpha2: T,
 }
 
 #[doc(hidden)]
@@ -211,6 +297,10 @@ pub struct Masks<T: Real> {
     pub normalized: T::Mask,
     /// Schlick's factor.
     pub schlick: T::Mask,
+    /// Oren–Nayar diffuse.
+    pub oren_nayar: T::Mask,
+    /// GGX specular.
+    pub ggx: T::Mask,
 }
 
 #[doc(hidden)]
@@ -225,6 +315,10 @@ pub struct Present {
     pub schlick: bool,
     /// Some lane has lobe 1 or 2.
     pub more_lobes: bool,
+    /// Some lane has Oren–Nayar diffuse.
+    pub oren_nayar: bool,
+    /// Some lane has GGX specular.
+    pub ggx: bool,
 }
 
 impl Present {
@@ -233,6 +327,8 @@ impl Present {
         normalized: true,
         schlick: true,
         more_lobes: true,
+        oren_nayar: true,
+        ggx: true,
     };
 }
 
@@ -252,11 +348,17 @@ impl<T: Real> Params<T> {
             f0: Vec3::new(s(p.f0.x), s(p.f0.y), s(p.f0.z)),
             schlick: s(p.schlick),
             diffuse_loss: s(p.diffuse_loss),
+            oren_nayar: s(p.oren_nayar),
+            on_a: s(p.on_a),
+            on_b: s(p.on_b),
+            ggx: s(p.ggx),
+            alpha2: s(p.alpha2),
         }
     }
 
     /// `a` on lanes where `mask` is set, else `b`: only the normalized models' fields
-    /// (`weight`, `more_shininess`, `f0`, `schlick`, `diffuse_loss`, `normalized`).
+    /// (`weight`, `more_shininess`, `f0`, `schlick`, `diffuse_loss`, `normalized`, and
+    /// Oren–Nayar's and GGX's).
     #[inline(always)]
     pub fn select_normalized(mask: T::Mask, a: &Params<T>, b: &mut Params<T>) {
         for (w, v) in b.weight.iter_mut().zip(a.weight) {
@@ -269,6 +371,11 @@ impl<T: Real> Params<T> {
         b.schlick = T::select(mask, a.schlick, b.schlick);
         b.diffuse_loss = T::select(mask, a.diffuse_loss, b.diffuse_loss);
         b.normalized = T::select(mask, a.normalized, b.normalized);
+        b.oren_nayar = T::select(mask, a.oren_nayar, b.oren_nayar);
+        b.on_a = T::select(mask, a.on_a, b.on_a);
+        b.on_b = T::select(mask, a.on_b, b.on_b);
+        b.ggx = T::select(mask, a.ggx, b.ggx);
+        b.alpha2 = T::select(mask, a.alpha2, b.alpha2);
     }
 
     /// The flags as lane masks.
@@ -279,6 +386,8 @@ impl<T: Real> Params<T> {
             blinn: zero.lt(self.blinn),
             normalized: zero.lt(self.normalized),
             schlick: zero.lt(self.schlick),
+            oren_nayar: zero.lt(self.oren_nayar),
+            ggx: zero.lt(self.ggx),
         }
     }
 }
@@ -307,17 +416,44 @@ impl<T: ScalarReal> Params<T> {
             f0: Vec3::new(one, one, one),
             schlick: zero,
             diffuse_loss: zero,
+            oren_nayar: zero,
+            on_a: one,
+            on_b: zero,
+            ggx: zero,
+            alpha2: one,
         };
         let diffuse = kd_albedo.scale(one / T::pi());
+        let lambert = Params {
+            kd_albedo: diffuse,
+            ks: one,
+            normalized: one,
+            ..classic
+        };
         let (spec, blinn) = match m.model {
             Model::NormalizedPhong(spec) => (spec, false),
             Model::NormalizedBlinnPhong(spec) => (spec, true),
-            Model::Lambert => {
+            Model::Lambert => return lambert,
+            Model::OrenNayar { roughness } => {
+                let (on_a, on_b) = oren_nayar_ab(s(roughness));
                 return Params {
-                    kd_albedo: diffuse,
-                    ks: one,
-                    normalized: one,
-                    ..classic
+                    oren_nayar: one,
+                    on_a,
+                    on_b,
+                    ..lambert
+                };
+            }
+            Model::Ggx(micro) => {
+                let r2 = s(micro.roughness) * s(micro.roughness);
+                let (kd_albedo, f0, schlick, diffuse_loss) = surface_constants(micro.surface);
+                return Params {
+                    kd_albedo: diffuse.scale(kd_albedo),
+                    weight: [s(m.ks), zero, zero],
+                    f0,
+                    schlick,
+                    diffuse_loss,
+                    ggx: one,
+                    alpha2: r2 * r2,
+                    ..lambert
                 };
             }
             _ => return classic,
@@ -333,20 +469,9 @@ impl<T: ScalarReal> Params<T> {
         for (w, l) in weight[1..].iter_mut().zip(spec.more_lobes) {
             *w = s(l.weight) * norm(s(l.shininess));
         }
-        let (kd_albedo, f0, schlick, diffuse_loss) = match spec.surface {
-            Surface::Dielectric { ior: None } => (diffuse, Vec3::new(one, one, one), zero, zero),
-            Surface::Dielectric { ior: Some(ior) } => {
-                let f = dielectric_f0(s(ior));
-                (diffuse, Vec3::new(f, f, f), one, one)
-            }
-            Surface::Metal(metal) => {
-                let c = metal.f0();
-                let black = Vec3::new(zero, zero, zero);
-                (black, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
-            }
-        };
+        let (keep_diffuse, f0, schlick, diffuse_loss) = surface_constants(spec.surface);
         Params {
-            kd_albedo,
+            kd_albedo: diffuse.scale(keep_diffuse),
             ks: one,
             shininess: s(m.shininess),
             blinn: if blinn { one } else { zero },
@@ -356,6 +481,25 @@ impl<T: ScalarReal> Params<T> {
             f0,
             schlick,
             diffuse_loss,
+            ..lambert
+        }
+    }
+}
+
+/// A surface's constants: 1 or 0 (whether the diffuse lobe is kept), `F₀`, and the
+/// `schlick` and `diffuse_loss` flags.
+fn surface_constants<T: ScalarReal>(surface: Surface) -> (T, Vec3<T>, T, T) {
+    let s = T::splat;
+    let (zero, one) = (s(0.0), s(1.0));
+    match surface {
+        Surface::Dielectric { ior: None } => (one, Vec3::new(one, one, one), zero, zero),
+        Surface::Dielectric { ior: Some(ior) } => {
+            let f = dielectric_f0(s(ior));
+            (one, Vec3::new(f, f, f), one, one)
+        }
+        Surface::Metal(metal) => {
+            let c = metal.f0();
+            (zero, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
         }
     }
 }
@@ -410,6 +554,18 @@ pub fn terms<T: Pow>(
             sum = sum + *w * T::pow_clamped(cosine, e);
         }
     }
+    if present.ggx {
+        let g = ggx(p.alpha2, n, to_light, view);
+        sum = T::select(masks.ggx, p.weight[0] * g, sum);
+    }
+    let diffuse = if present.oren_nayar {
+        let n_dot_v = n.dot(view).max(zero);
+        let l_dot_v = to_light.dot(view);
+        let on = oren_nayar(p.on_a, p.on_b, n_dot_l, n_dot_v, l_dot_v);
+        T::select(masks.oren_nayar, on, n_dot_l)
+    } else {
+        n_dot_l
+    };
     let one = T::splat(1.0);
     let (f, diffuse_scale) = if present.schlick {
         let w = schlick_weight(half_angle_cosine(to_light, view));
@@ -425,7 +581,7 @@ pub fn terms<T: Pow>(
     };
     let sum = sum * n_dot_l;
     Terms {
-        diffuse: T::select(masks.normalized, n_dot_l * diffuse_scale, classic.diffuse),
+        diffuse: T::select(masks.normalized, diffuse * diffuse_scale, classic.diffuse),
         specular: Vec3::select(masks.normalized, f.scale(sum), classic.specular),
     }
 }

@@ -144,8 +144,9 @@ pub use presets::{
 pub use render::{Encoded, Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
 pub use runs::Span;
 pub use scene::{
-    Camera, Item, ItemKind, Light, Lobe, Material, Metal, Model, Problem, Scene, SceneError,
-    Specular, Sphere, Surface, DEFAULT_LIGHTS, DEFAULT_SPHERES, MORE_LOBES,
+    Camera, Item, ItemKind, Light, Lobe, Material, Metal, Microfacet, Model, Problem, Scene,
+    SceneError, Specular, Sphere, Surface, DEFAULT_LIGHTS, DEFAULT_SPHERES,
+    MAX_OREN_NAYAR_ROUGHNESS, MIN_GGX_ROUGHNESS, MORE_LOBES,
 };
 pub use vec3::Vec3;
 

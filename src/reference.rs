@@ -112,16 +112,24 @@ fn normalized_brdf(m: &Material, n: D3, l: D3, v: D3) -> [f64; 3] {
     use core::f64::consts::PI;
     let albedo = [m.albedo.r as f64, m.albedo.g as f64, m.albedo.b as f64];
     let diffuse = albedo.map(|a| m.kd as f64 * a / PI);
-    let (spec, blinn) = match m.model {
-        Model::NormalizedPhong(spec) => (spec, false),
-        Model::NormalizedBlinnPhong(spec) => (spec, true),
-        _ => return diffuse,
-    };
     let h = l.add(v);
     let h = if h.len() > 0.0 {
         h.unit()
     } else {
         D3::default()
+    };
+    let (spec, blinn) = match m.model {
+        Model::NormalizedPhong(spec) => (spec, false),
+        Model::NormalizedBlinnPhong(spec) => (spec, true),
+        Model::OrenNayar { roughness } => {
+            let on = oren_nayar_factor(roughness as f64, n, l, v);
+            return diffuse.map(|d| d * on);
+        }
+        Model::Ggx(micro) => {
+            let lobe = m.ks as f64 * ggx_lobe(micro.roughness as f64, n, l, v, h);
+            return surface_mix(micro.surface, diffuse, lobe, l, h);
+        }
+        _ => return diffuse,
     };
     let cosine = if blinn {
         n.dot(h)
@@ -143,9 +151,16 @@ fn normalized_brdf(m: &Material, n: D3, l: D3, v: D3) -> [f64; 3] {
             lobes += w * c * libm::pow(cosine.min(1.0), e);
         }
     }
+    surface_mix(spec.surface, diffuse, lobes, l, h)
+}
+
+/// The diffuse lobe and the specular `lobes` combined as the surface combines them:
+/// unchanged (dielectric without `ior`), with Schlick's `F` on the lobes and `1 − F` on the
+/// diffuse lobe (with `ior`), or tinted by the metal's `F` with no diffuse lobe.
+fn surface_mix(surface: Surface, diffuse: [f64; 3], lobes: f64, l: D3, h: D3) -> [f64; 3] {
     let schlick = libm::pow(1.0 - l.dot(h).clamp(0.0, 1.0), 5.0);
     let fresnel = |f0: f64| f0 + (1.0 - f0) * schlick;
-    match spec.surface {
+    match surface {
         Surface::Dielectric { ior: None } => diffuse.map(|d| d + lobes),
         Surface::Dielectric { ior: Some(ior) } => {
             let r = (ior as f64 - 1.0) / (ior as f64 + 1.0);
@@ -158,6 +173,49 @@ fn normalized_brdf(m: &Material, n: D3, l: D3, v: D3) -> [f64; 3] {
             [c.r, c.g, c.b].map(|f0| fresnel(f0 as f64) * lobes)
         }
     }
+}
+
+/// Oren–Nayar's factor on `ρ/π` (the qualitative model of 1994) from the angles themselves:
+/// `A + B·max(0, cos(φᵢ − φₒ))·sin(max(θᵢ, θₒ))·tan(min(θᵢ, θₒ))`, the azimuths measured in
+/// the tangent plane.
+fn oren_nayar_factor(sigma: f64, n: D3, l: D3, v: D3) -> f64 {
+    let s2 = sigma * sigma;
+    let a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+    let b = 0.45 * s2 / (s2 + 0.09);
+    let theta_i = libm::acos(n.dot(l).clamp(-1.0, 1.0));
+    let theta_o = libm::acos(n.dot(v).clamp(-1.0, 1.0));
+    let lt = l.sub(n.mul(n.dot(l)));
+    let vt = v.sub(n.mul(n.dot(v)));
+    let cos_phi = if lt.len() > 0.0 && vt.len() > 0.0 {
+        lt.unit().dot(vt.unit())
+    } else {
+        0.0
+    };
+    let (alpha, beta) = (theta_i.max(theta_o), theta_i.min(theta_o));
+    a + b * cos_phi.max(0.0) * libm::sin(alpha) * libm::tan(beta)
+}
+
+/// The GGX microfacet lobe `D·G₂/(4 cos θᵢ cos θₒ)` (no Fresnel) in its angular form:
+/// `D = α²/(π cos⁴θ_h (α² + tan²θ_h)²)`, `G₂ = 1/(1 + Λ(θᵢ) + Λ(θₒ))`,
+/// `Λ(θ) = (√(1 + α²tan²θ) − 1)/2`, `α = roughness²`. A view at or below the horizon takes
+/// the lobe's limit there (`cos θₒ` clamped to `10⁻¹²`).
+fn ggx_lobe(roughness: f64, n: D3, l: D3, v: D3, h: D3) -> f64 {
+    use core::f64::consts::PI;
+    let alpha = roughness * roughness;
+    let a2 = alpha * alpha;
+    let cos_i = n.dot(l);
+    let cos_o = n.dot(v).max(1e-12);
+    let cos_h = n.dot(h);
+    if cos_i <= 0.0 || cos_h <= 0.0 {
+        return 0.0;
+    }
+    let tan2 = |c: f64| (1.0 - c * c).max(0.0) / (c * c);
+    let t = a2 + tan2(cos_h);
+    let c2 = cos_h * cos_h;
+    let d = a2 / (PI * c2 * c2 * t * t);
+    let lambda = |c: f64| (libm::sqrt(1.0 + a2 * tan2(c)) - 1.0) / 2.0;
+    let g2 = 1.0 / (1.0 + lambda(cos_i) + lambda(cos_o));
+    d * g2 / (4.0 * cos_i * cos_o)
 }
 
 /// The reference colour and hit record of pixel `(x, y)` of a `width × height` image.

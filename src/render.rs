@@ -79,6 +79,13 @@ pub enum RenderError {
         /// The field's name, as spelled in the scene file.
         field: &'static str,
     },
+    /// A sphere's model has no fixed-point implementation yet (Oren–Nayar and GGX render on
+    /// the float paths only); only [`PreparedFixed::new`](crate::PreparedFixed::new) returns
+    /// it.
+    ModelNotOnFixedPath {
+        /// The sphere.
+        item: Item,
+    },
 }
 
 impl fmt::Display for RenderError {
@@ -111,6 +118,11 @@ impl fmt::Display for RenderError {
             RenderError::OutOfFixedRange { item, field } => write!(
                 f,
                 "{item}: `{field}` does not fit the fixed-point path's number formats"
+            ),
+            RenderError::ModelNotOnFixedPath { item } => write!(
+                f,
+                "{item}: `model` has no fixed-point implementation (oren-nayar and ggx render \
+                 on the float paths)"
             ),
         }
     }

@@ -23,6 +23,8 @@
 //! | shininess `n` (every lobe) | `0 < n ≤` [`MAX_SHININESS`] |
 //! | lobe weights (`ks`, `lobes[k].weight`) | `0 ≤ w ≤` [`MAX_VALUE`] |
 //! | index of refraction `ior` | `1 < ior ≤` [`MAX_VALUE`]: at 1 there is no interface to reflect, and below 1 Schlick's form would need total internal reflection |
+//! | Oren–Nayar `roughness` `σ` (radians) | `0 ≤ σ ≤` [`MAX_OREN_NAYAR_ROUGHNESS`] |
+//! | GGX `roughness` `r` | [`MIN_GGX_ROUGHNESS`] `≤ r ≤ 1` |
 //! | directions (camera up, distant light) | finite, not zero; only the direction is used |
 //! | vertical field of view | `0° < vfov < 180°` |
 
@@ -94,6 +96,50 @@ pub enum Model {
     /// normalization `c(n) = (n + 2)(n + 4) / (8π(2^(−n/2) + n))`, which makes the lobe's
     /// directional albedo 1 at normal view (see [`crate::brdf`]).
     NormalizedBlinnPhong(Specular),
+    /// Oren–Nayar rough diffuse (the qualitative model of Oren and Nayar, 1994):
+    /// `kd·albedo/π·(A + B·max(0, cos(φᵢ − φₒ))·sin α·tan β)`, with `roughness` the standard
+    /// deviation `σ` of the facet slopes in radians, `0 ≤ σ ≤` [`MAX_OREN_NAYAR_ROUGHNESS`].
+    /// At `σ = 0` it is Lambert. `ks` and `shininess` are not used.
+    OrenNayar {
+        /// `σ`, radians.
+        roughness: f32,
+    },
+    /// Cook–Torrance microfacet specular with the GGX (Trowbridge–Reitz) distribution, Smith
+    /// height-correlated masking-shadowing and Schlick Fresnel, weighted by `ks`, plus a
+    /// Lambert lobe `kd·albedo/π` for dielectrics (see [`Microfacet`] and [`crate::brdf`]).
+    /// `shininess` is not used.
+    Ggx(Microfacet),
+}
+
+/// Smallest accepted GGX `roughness`: `α = roughness²` is then `2.5·10⁻³` and the
+/// distribution's peak `1/(πα²)` is about `5·10⁴`, still a lobe some pixels wide on a sphere
+/// of a few hundred pixels; a smaller one would be a mirror that pixels cannot resolve.
+pub const MIN_GGX_ROUGHNESS: f32 = 0.05;
+
+/// Largest accepted Oren–Nayar `σ`, in radians: facet slopes of 90° standard deviation
+/// already make the surface as rough as the model describes.
+pub const MAX_OREN_NAYAR_ROUGHNESS: f32 = core::f32::consts::FRAC_PI_2;
+
+/// The options of the GGX model: the perceptual roughness and the surface.
+///
+/// ```
+/// use shadeline::{Material, Metal, Microfacet, Model, Surface};
+/// let brushed_gold = Material {
+///     kd: 0.0,
+///     ks: 1.0,
+///     model: Model::Ggx(Microfacet { roughness: 0.4, surface: Surface::Metal(Metal::Gold) }),
+///     ..Material::default()
+/// };
+/// assert!(brushed_gold.is_energy_conserving());
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Microfacet {
+    /// Perceptual roughness `r`, [`MIN_GGX_ROUGHNESS`] `≤ r ≤ 1`; the distribution's width
+    /// is `α = r²`.
+    pub roughness: f32,
+    /// Dielectric (a Lambert lobe under an untinted highlight; with `ior`, Schlick Fresnel
+    /// and `1 − F` on the diffuse lobe; without, `F = 1`) or metal (tinted, no diffuse lobe).
+    pub surface: Surface,
 }
 
 impl Default for Model {
@@ -104,7 +150,8 @@ impl Default for Model {
 }
 
 impl Model {
-    /// The specular options of a normalized model (`None` for the classic models and Lambert).
+    /// The specular options of a normalized Phong or Blinn-Phong model (`None` for the
+    /// others).
     pub fn specular(&self) -> Option<&Specular> {
         match self {
             Model::NormalizedPhong(s) | Model::NormalizedBlinnPhong(s) => Some(s),
@@ -115,6 +162,15 @@ impl Model {
     /// Whether this is one of the lesson's two classic, unnormalized models.
     pub fn is_classic(&self) -> bool {
         matches!(self, Model::Phong | Model::BlinnPhong)
+    }
+
+    /// The surface of a model that has one (normalized Phong and Blinn-Phong, GGX).
+    pub fn surface(&self) -> Option<Surface> {
+        match self {
+            Model::NormalizedPhong(s) | Model::NormalizedBlinnPhong(s) => Some(s.surface),
+            Model::Ggx(m) => Some(m.surface),
+            _ => None,
+        }
     }
 }
 
@@ -467,11 +523,18 @@ impl fmt::Display for SceneError {
                 problem,
             } => {
                 write!(f, "{item}: `{field}` {problem}")?;
-                if *problem == Problem::TooLarge {
+                if *problem == Problem::TooLarge && *field == "roughness" {
+                    write!(f, " (at most π/2 for oren-nayar, 1 for ggx)")?;
+                } else if *problem == Problem::TooLarge {
                     write!(f, " (at most {:e})", limit_of(field))?;
                 }
                 if *problem == Problem::TooSmall {
-                    write!(f, " (at least {MIN_RADIUS:e})")?;
+                    let least = if *field == "roughness" {
+                        MIN_GGX_ROUGHNESS
+                    } else {
+                        MIN_RADIUS
+                    };
+                    write!(f, " (at least {least:e})")?;
                 }
                 Ok(())
             }
@@ -602,23 +665,41 @@ impl Material {
                 c.non_negative(weight, &[lobe.weight], MAX_VALUE)?;
                 c.positive(shininess, lobe.shininess, MAX_SHININESS)?;
             }
-            if let Surface::Dielectric { ior: Some(ior) } = spec.surface {
-                c.finite("ior", &[ior])?;
-                if ior <= 1.0 {
-                    return Err(c.err("ior", Problem::NotAboveOne));
+        }
+        match self.model {
+            Model::OrenNayar { roughness } => {
+                c.non_negative("roughness", &[roughness], MAX_OREN_NAYAR_ROUGHNESS)?;
+            }
+            Model::Ggx(m) => {
+                c.finite("roughness", &[m.roughness])?;
+                if m.roughness < MIN_GGX_ROUGHNESS {
+                    return Err(c.err("roughness", Problem::TooSmall));
                 }
-                if ior > MAX_VALUE {
-                    return Err(c.err("ior", Problem::TooLarge));
+                if m.roughness > 1.0 {
+                    return Err(c.err("roughness", Problem::TooLarge));
                 }
+            }
+            _ => {}
+        }
+        if let Some(Surface::Dielectric { ior: Some(ior) }) = self.model.surface() {
+            c.finite("ior", &[ior])?;
+            if ior <= 1.0 {
+                return Err(c.err("ior", Problem::NotAboveOne));
+            }
+            if ior > MAX_VALUE {
+                return Err(c.err("ior", Problem::TooLarge));
             }
         }
         Ok(())
     }
 
     /// Whether this material cannot reflect more light than it receives, by construction:
-    /// a normalized model (or Lambert) whose diffuse weight times its brightest albedo
+    /// a normalized model (or Lambert, or GGX) whose diffuse weight times its brightest albedo
     /// channel plus the sum of its specular weights is at most 1 (for a metal, which has no
-    /// diffuse lobe, the specular weights alone). The classic models never are: they are
+    /// diffuse lobe, the specular weights alone). For Oren–Nayar, the diffuse weight times
+    /// the brightest albedo channel times the model's largest directional albedo `A + B/2`
+    /// (reached at grazing light; it exceeds 1 by up to 1.5 % near `σ = 0.2`, see
+    /// [`crate::brdf`]) is at most 1. The classic models never are: they are
     /// not normalized (see `tests/brdf_laws.rs` for by how much they can exceed 1).
     ///
     /// Materials that are not energy conserving are still accepted: this is a flag, not a
@@ -645,6 +726,14 @@ impl Material {
                     Surface::Dielectric { .. } => diffuse + specular <= 1.0,
                 }
             }
+            Model::OrenNayar { roughness } => {
+                let (a, b) = crate::brdf::oren_nayar_ab(roughness);
+                diffuse * (a + b / 2.0) <= 1.0
+            }
+            Model::Ggx(m) => match m.surface {
+                Surface::Metal(_) => self.ks <= 1.0,
+                Surface::Dielectric { .. } => diffuse + self.ks <= 1.0,
+            },
         }
     }
 }

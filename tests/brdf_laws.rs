@@ -734,3 +734,315 @@ fn the_f32_kernel_obeys_the_laws() {
 fn the_fixed_kernel_obeys_the_laws() {
     kernel_laws::<FixedKernel>();
 }
+
+// Oren–Nayar and GGX.
+//
+// The same laws for the two microfacet models, with a Monte Carlo estimator fitted to them:
+// one-sample multiple importance sampling (balance heuristic) over cosine-weighted light
+// directions and, for GGX, light directions mirrored about half vectors drawn from
+// `D(H)·cos θ_h` (pdf `D·cos θ_h/(4 V·H)` over light directions).
+
+/// Oren–Nayar roughnesses σ, radians: Lambert, the largest overshoot (≈ 0.2), the point
+/// where `A + B/2` falls to 1 (≈ 0.33), and rough to very rough.
+const OREN_NAYAR_SIGMAS: [f32; 6] = [0.0, 0.2, 0.33, 0.5, 1.0, std::f32::consts::FRAC_PI_2];
+/// GGX perceptual roughnesses, from the smallest accepted to 1.
+const GGX_ROUGHNESS: [f32; 6] = [0.05, 0.1, 0.25, 0.5, 0.75, 1.0];
+const ROUGH_SAMPLES: usize = 200_000;
+
+fn oren_nayar(sigma: f32) -> Material {
+    white(1.0, 0.0, 1.0, Model::OrenNayar { roughness: sigma })
+}
+
+fn ggx(roughness: f32, kd: f32, ks: f32, surface: Surface) -> Material {
+    white(kd, ks, 1.0, Model::Ggx(Microfacet { roughness, surface }))
+}
+
+/// One GGX material per surface at `roughness`, with `kd + ks = 1`.
+fn every_ggx(roughness: f32) -> Vec<(String, Material)> {
+    let plain = Surface::Dielectric { ior: None };
+    let fresnel = Surface::Dielectric { ior: Some(1.5) };
+    vec![
+        (
+            format!("ggx r={roughness} specular only"),
+            ggx(roughness, 0.0, 1.0, plain),
+        ),
+        (
+            format!("ggx r={roughness} kd 0.5 ks 0.5"),
+            ggx(roughness, 0.5, 0.5, plain),
+        ),
+        (
+            format!("ggx r={roughness} ior 1.5 kd 0.5 ks 0.5"),
+            ggx(roughness, 0.5, 0.5, fresnel),
+        ),
+        (
+            format!("ggx r={roughness} gold"),
+            ggx(roughness, 0.0, 1.0, Surface::Metal(Metal::Gold)),
+        ),
+    ]
+}
+
+fn every_rough_model() -> Vec<(String, Material)> {
+    let mut out: Vec<(String, Material)> = OREN_NAYAR_SIGMAS
+        .iter()
+        .map(|&s| (format!("oren-nayar σ={s}"), oren_nayar(s)))
+        .collect();
+    for r in GGX_ROUGHNESS {
+        out.extend(every_ggx(r));
+    }
+    out
+}
+
+/// The GGX distribution `D(H)` of width `α` at `cos θ_h`, written here from its textbook form
+/// `α²/(π cos⁴θ_h (α² + tan²θ_h)²)` for the sampler's pdf.
+fn ggx_d(alpha: f64, cos_h: f64) -> f64 {
+    if cos_h <= 0.0 {
+        return 0.0;
+    }
+    let a2 = alpha * alpha;
+    let c2 = cos_h * cos_h;
+    let t = a2 + (1.0 - c2) / c2;
+    a2 / (std::f64::consts::PI * c2 * c2 * t * t)
+}
+
+/// The directional albedo `∫ f cos θ_i dω_i` seen from `view` of a material whose
+/// `reflected(L)` is `f(L, V)·cos θ_i`, by MIS over cosine sampling and (with `alpha`) GGX
+/// half-vector sampling. Returns the largest channel's mean and standard error.
+fn rough_albedo(
+    alpha: Option<f64>,
+    view: D,
+    samples: usize,
+    seed: u64,
+    mut reflected: impl FnMut(D) -> [f64; 3],
+) -> (f64, f64) {
+    use std::f64::consts::PI;
+    let strategies = if alpha.is_some() { 2 } else { 1 };
+    let pdf = |l: D| {
+        let mut sum = power_pdf(dot(N, l), 1.0);
+        if let Some(a) = alpha {
+            let h = unit(v(l.x + view.x, l.y + view.y, l.z + view.z));
+            sum += ggx_d(a, dot(N, h)) * dot(N, h) / (4.0 * dot(view, h).abs()).max(1e-300);
+        }
+        sum / strategies as f64
+    };
+    let mut rng = Rng(seed);
+    let (mut sum, mut sum2) = ([0.0f64; 3], [0.0f64; 3]);
+    for i in 0..samples {
+        let (u1, u2) = (rng.next(), rng.next());
+        let l = match alpha {
+            Some(a) if i % 2 == 1 => {
+                // tan²θ_h = α²·u/(1 − u): the half vector's pdf is D·cos θ_h.
+                let t2 = a * a * u1 / (1.0 - u1).max(1e-300);
+                let c = 1.0 / (1.0 + t2).sqrt();
+                let s = (1.0 - c * c).max(0.0).sqrt();
+                let phi = 2.0 * PI * u2;
+                let h = v(s * phi.cos(), s * phi.sin(), c);
+                reflect(view, h)
+            }
+            _ => sample_power(N, 1.0, u1, u2),
+        };
+        if dot(N, l) <= 1e-12 {
+            continue;
+        }
+        let r = reflected(l);
+        let w = 1.0 / pdf(l);
+        for (c, rc) in r.into_iter().enumerate() {
+            let x = rc * w;
+            sum[c] += x;
+            sum2[c] += x * x;
+        }
+    }
+    let m = samples as f64;
+    (0..3)
+        .map(|c| {
+            let mean = sum[c] / m;
+            let var = (sum2[c] / m - mean * mean).max(0.0);
+            (mean, (var / m).sqrt())
+        })
+        .fold((0.0, 0.0), |a, b| if b.0 > a.0 { b } else { a })
+}
+
+fn alpha_of(m: &Material) -> Option<f64> {
+    match m.model {
+        Model::Ggx(micro) => Some((micro.roughness as f64).powi(2)),
+        _ => None,
+    }
+}
+
+/// The brdf module's `f64` albedo of `m` seen from `view`.
+fn rough_albedo_f64(m: &Material, view: D, samples: usize, seed: u64) -> (f64, f64) {
+    let p = Params::<f64>::of(m);
+    rough_albedo(alpha_of(m), view, samples, seed, |l| {
+        let f = brdf::value(&p, N, l, view);
+        let c = dot(N, l);
+        [f.x * c, f.y * c, f.z * c]
+    })
+}
+
+#[test]
+fn oren_nayar_and_ggx_are_positive_and_reciprocal() {
+    let mut rng = Rng(0x5eed_0b11);
+    let mut worst = 0.0f64;
+    for (name, m) in every_rough_model() {
+        let p = Params::<f64>::of(&m);
+        for _ in 0..5_000 {
+            let (l, o) = (random_direction(&mut rng), random_direction(&mut rng));
+            let a = brdf::value(&p, N, l, o);
+            let b = brdf::value(&p, N, o, l);
+            for (x, y) in [(a.x, b.x), (a.y, b.y), (a.z, b.z)] {
+                assert!(
+                    x >= 0.0 && x.is_finite(),
+                    "{name}: f = {a:?} at L={l:?} V={o:?}"
+                );
+                let rel = (x - y).abs() / x.abs().max(y.abs()).max(1e-300);
+                worst = worst.max(rel);
+                assert!(rel <= 1e-6, "{name}: {x} vs {y} (L={l:?} V={o:?})");
+            }
+        }
+    }
+    println!("oren-nayar, ggx: f >= 0; reciprocity: largest relative difference {worst:.2e}");
+}
+
+#[test]
+fn oren_nayar_at_zero_roughness_is_lambert() {
+    let mut rng = Rng(0x5eed_0b12);
+    let on = Params::<f64>::of(&oren_nayar(0.0));
+    let lambert = Params::<f64>::of(&white(1.0, 0.0, 1.0, Model::Lambert));
+    for _ in 0..2_000 {
+        let (l, o) = (random_direction(&mut rng), random_direction(&mut rng));
+        let (a, b) = (brdf::value(&on, N, l, o), brdf::value(&lambert, N, l, o));
+        assert!((a.x - b.x).abs() <= 1e-12, "{a:?} vs {b:?}");
+    }
+}
+
+#[test]
+fn oren_nayar_and_ggx_conserve_energy() {
+    println!("| model | largest albedo over views 0°..89° | at view | std. error | bound |");
+    println!("|---|---|---|---|---|");
+    let mut seed = 0x5eed_e100u64;
+    for (name, m) in every_rough_model() {
+        // GGX: at most 1 (single scattering only loses energy). Oren–Nayar: at most
+        // A + B/2, its albedo toward grazing light (see `brdf`), which is ≤ 1 from σ ≈ 0.33.
+        let bound = match m.model {
+            Model::OrenNayar { roughness } => {
+                let (a, b) = brdf::oren_nayar_ab(roughness as f64);
+                a + b / 2.0
+            }
+            _ => 1.0,
+        };
+        let mut best = (0.0, 0.0, 0.0);
+        for deg in VIEW_ANGLES {
+            seed += 1;
+            let (mean, se) = rough_albedo_f64(&m, view_at(deg), ROUGH_SAMPLES / 4, seed);
+            assert!(
+                mean <= bound + 4.0 * se,
+                "{name} view {deg}°: albedo {mean} ± {se} above {bound}"
+            );
+            if mean > best.0 {
+                best = (mean, deg, se);
+            }
+        }
+        if bound <= 1.0 {
+            assert!(m.is_energy_conserving(), "{name}");
+        }
+        println!(
+            "| {name} | {:.4} | {}° | {:.1e} | {bound:.4} |",
+            best.0, best.1, best.2
+        );
+    }
+}
+
+#[test]
+fn oren_nayar_overshoots_near_its_bound_at_grazing_light() {
+    // The qualitative model's known flaw, measured: at σ = 0.2 the albedo toward grazing
+    // directions exceeds 1 (the bound A + B/2 is 1.015), so such a material with kd·albedo 1
+    // is not flagged energy conserving, while one with σ = 0.5 is.
+    let m = oren_nayar(0.2);
+    let (mean, se) = rough_albedo_f64(&m, view_at(89.0), ROUGH_SAMPLES, 0x5eed_0b13);
+    println!("oren-nayar σ=0.2 at 89°: albedo {mean:.4} ± {se:.1e}");
+    assert!(mean > 1.005 + 4.0 * se, "{mean} ± {se}");
+    assert!(!m.is_energy_conserving());
+    assert!(oren_nayar(0.5).is_energy_conserving());
+}
+
+/// Published GGX single-scattering directional albedos `E(μ, r)` with `F = 1`, height-
+/// correlated Smith, `α = r²`: Blender Cycles' `table_ggx_E` (`intern/cycles/scene/
+/// shader.tables`, the 32 × 32 table of Kulla and Conty's energy compensation, *Revisiting
+/// Physically Based Shading at Imageworks*, SIGGRAPH 2017 course), whose grid point `(i, j)`
+/// is `r = i/31`, `μ = j/31`. `E(1, 1)` is also `1 − ln 2 = 0.306853` in closed form (at
+/// `α = 1`, `D = 1/π` and `G₂ = 2 cos θᵢ/(1 + cos θᵢ)` at `V = N`).
+const PUBLISHED_GGX_ALBEDO: [(f32, f64, f64); 4] = [
+    // (roughness, μ = cos θ_o, E)
+    (16.0 / 31.0, 1.0, 0.903873),
+    (16.0 / 31.0, 16.0 / 31.0, 0.847421),
+    (1.0, 1.0, 0.306853),
+    (1.0, 16.0 / 31.0, 0.443841),
+];
+
+#[test]
+fn ggx_albedo_matches_the_published_table() {
+    println!("| roughness | μ | Monte Carlo E ± std. error | published E | difference |");
+    println!("|---|---|---|---|---|");
+    let mut seed = 0x5eed_a1b0u64;
+    for (r, mu, published) in PUBLISHED_GGX_ALBEDO {
+        seed += 1;
+        let m = ggx(r, 0.0, 1.0, Surface::Dielectric { ior: None });
+        let view = v((1.0 - mu * mu).max(0.0).sqrt(), 0.0, mu);
+        let (mean, se) = rough_albedo_f64(&m, view, 4 * ROUGH_SAMPLES, seed);
+        println!(
+            "| {r:.4} | {mu:.4} | {mean:.5} ± {se:.1e} | {published} | {:+.5} |",
+            mean - published
+        );
+        // Four standard errors, plus the table's own 6-digit rounding and its Monte Carlo
+        // noise (it was estimated too): 5e-4.
+        assert!(
+            (mean - published).abs() <= 4.0 * se + 5e-4,
+            "r={r} μ={mu}: {mean} ± {se} vs published {published}"
+        );
+    }
+}
+
+#[test]
+fn the_f32_kernel_obeys_the_laws_for_oren_nayar_and_ggx() {
+    // Positivity, reciprocity and albedo ≤ its bound, on what the f32 kernel puts in a pixel.
+    let mut rng = Rng(0x5eed_0b14);
+    let mut seed = 0x5eed_c1de;
+    let mut worst = 0.0f64;
+    for (name, m) in every_rough_model() {
+        for _ in 0..40 {
+            let (l, o) = (random_direction(&mut rng), random_direction(&mut rng));
+            if dot(N, l) < 0.05 || dot(N, o) < 0.05 {
+                continue;
+            }
+            let a = kernel_reflected::<FloatKernel>(&m, l, o);
+            let b = kernel_reflected::<FloatKernel>(&m, o, l);
+            for (x, y) in a.iter().zip(&b) {
+                assert!(*x >= 0.0 && *y >= 0.0, "{name}: {a:?} {b:?}");
+                let (fx, fy) = (x / dot(N, l), y / dot(N, o));
+                let diff = (fx - fy).abs() / (2e-3 * fx.max(fy) + 1e-6);
+                worst = worst.max(diff);
+                assert!(diff <= 1.0, "{name}: f(L,V) {fx} vs f(V,L) {fy}");
+            }
+        }
+        let bound = match m.model {
+            Model::OrenNayar { roughness } => {
+                let (a, b) = brdf::oren_nayar_ab(roughness as f64);
+                a + b / 2.0
+            }
+            _ => 1.0,
+        };
+        for deg in [0.0, 60.0] {
+            seed += 1;
+            let view = view_at(deg);
+            let reflected = |l: D| kernel_reflected::<FloatKernel>(&m, l, view);
+            let (mean, se) = rough_albedo(alpha_of(&m), view, KERNEL_SAMPLES, seed, reflected);
+            assert!(
+                mean <= bound + 4.0 * se + 1e-3,
+                "{name} view {deg}°: kernel albedo {mean} ± {se}"
+            );
+        }
+    }
+    println!(
+        "f32 kernel, oren-nayar and ggx: reciprocity: largest difference {:.0}% of the allowance",
+        100.0 * worst
+    );
+}

@@ -223,12 +223,12 @@ pub fn sample_curve(n: f64) -> Vec<(f64, f64)> {
         .collect()
 }
 
-/// The specular lobes of `material` that it has, as `(weight, shininess)`: lobe 0 (`ks`,
-/// `shininess`) and, for the normalized models, lobes 1 and 2; a lobe of weight 0 is absent,
-/// and Lambert has none.
+/// The cosine-power lobes of `material` that it has, as `(weight, shininess)`: lobe 0 (`ks`,
+/// `shininess`) and, for the normalized models, lobes 1 and 2; a lobe of weight 0 is absent.
+/// Lambert and Oren–Nayar have none, and GGX's lobe is not a cosine power: none either.
 pub fn lobes(material: &Material) -> Vec<(f32, f32)> {
     let mut lobes = match material.model {
-        Model::Lambert => return Vec::new(),
+        Model::Lambert | Model::OrenNayar { .. } | Model::Ggx(_) => return Vec::new(),
         _ => vec![(material.ks, material.shininess)],
     };
     if let Some(spec) = material.model.specular() {
@@ -250,8 +250,9 @@ pub fn shininesses(spheres: &[Sphere]) -> Vec<f32> {
     all
 }
 
-/// A short name for a material: its model, surface and exponents, e.g. `classic Phong,
-/// n = 50` or `normalized Blinn-Phong, gold, n = 40`.
+/// A short name for a material: its model, roughness, surface and exponents, e.g.
+/// `classic Phong, n = 50`, `normalized Blinn-Phong, gold, n = 40` or
+/// `GGX, roughness 0.5, gold`.
 pub fn describe(material: &Material) -> String {
     let model = match material.model {
         Model::Phong => "classic Phong",
@@ -259,11 +260,18 @@ pub fn describe(material: &Material) -> String {
         Model::Lambert => "Lambert",
         Model::NormalizedPhong(_) => "normalized Phong",
         Model::NormalizedBlinnPhong(_) => "normalized Blinn-Phong",
+        Model::OrenNayar { .. } => "Oren-Nayar",
+        Model::Ggx(_) => "GGX",
         _ => "another model",
     };
     let mut parts = vec![model.to_string()];
-    if let Some(spec) = material.model.specular() {
-        match spec.surface {
+    match material.model {
+        Model::OrenNayar { roughness } => parts.push(format!("σ = {roughness} rad")),
+        Model::Ggx(m) => parts.push(format!("roughness {}", m.roughness)),
+        _ => {}
+    }
+    if let Some(surface) = material.model.surface() {
+        match surface {
             Surface::Metal(metal) => parts.push(metal.name().to_string()),
             Surface::Dielectric { ior: Some(ior) } => parts.push(format!("ior {ior}")),
             Surface::Dielectric { ior: None } => {}

@@ -14,9 +14,10 @@
 //!
 //! | key | values | notes |
 //! |---|---|---|
-//! | `model` | `"phong"` (default), `"blinn-phong"`, `"lambert"`, `"normalized-phong"`, `"normalized-blinn-phong"` | `lambert` needs no `ks`/`shininess` |
-//! | `metal` | `"gold"`, `"copper"`, `"bronze"` | normalized models only; a metal has no diffuse lobe, so no `albedo`/`kd`, and no `ior` |
-//! | `ior` | a number `> 1` | normalized dielectrics: Schlick Fresnel |
+//! | `model` | `"phong"` (default), `"blinn-phong"`, `"lambert"`, `"normalized-phong"`, `"normalized-blinn-phong"`, `"oren-nayar"`, `"ggx"` | `lambert` and `oren-nayar` need no `ks`/`shininess`, `ggx` no `shininess` |
+//! | `roughness` | `oren-nayar`: `σ` in radians, `0` (Lambert) to `π/2`; `ggx`: perceptual roughness `0.05` to `1` (`α = roughness²`) | required by those two models, refused by the others |
+//! | `metal` | `"gold"`, `"copper"`, `"bronze"` | normalized Phong and Blinn-Phong, and `ggx`; a metal has no diffuse lobe, so no `albedo`/`kd`, and no `ior` |
+//! | `ior` | a number `> 1` | dielectrics of those models: Schlick Fresnel |
 //! | `lobes` | `[{ weight = 0.5, shininess = 20.0 }, …]`, 1 to 3 | normalized models only; replaces `ks` and `shininess` (`lobes[0]`) |
 //!
 //! Parsing has three stages, each of which reports through [`SceneFileError`]: the TOML syntax
@@ -27,8 +28,9 @@
 use crate::toml_keys::KeyIndex;
 use serde::Deserialize;
 use shadeline::{
-    Camera, Item, ItemKind, Light, LinearRgb, Lobe, Material, Metal, Model, Prepared, RenderError,
-    Scalar, Scene, SceneError, Specular, Sphere, Surface, Vec3, MAX_DIMENSION, MORE_LOBES,
+    Camera, Item, ItemKind, Light, LinearRgb, Lobe, Material, Metal, Microfacet, Model, Prepared,
+    RenderError, Scalar, Scene, SceneError, Specular, Sphere, Surface, Vec3, MAX_DIMENSION,
+    MORE_LOBES,
 };
 use std::fmt;
 use std::ops::Range;
@@ -167,6 +169,8 @@ enum RawModel {
     Lambert,
     NormalizedPhong,
     NormalizedBlinnPhong,
+    OrenNayar,
+    Ggx,
 }
 
 #[derive(Deserialize)]
@@ -183,6 +187,7 @@ struct RawSphere {
     metal: Option<String>,
     ior: Option<f64>,
     lobes: Option<Vec<RawLobe>>,
+    roughness: Option<f64>,
 }
 
 #[derive(Deserialize)]
@@ -393,20 +398,35 @@ fn material(s: &RawSphere, i: usize, place: &Placer<'_>) -> Result<Material, Sce
         s.model,
         RawModel::NormalizedPhong | RawModel::NormalizedBlinnPhong
     );
-    for (name, given) in [
-        ("metal", s.metal.is_some()),
-        ("ior", s.ior.is_some()),
-        ("lobes", s.lobes.is_some()),
-    ] {
-        if given && !normalized {
+    let ggx = s.model == RawModel::Ggx;
+    let rough = matches!(s.model, RawModel::OrenNayar | RawModel::Ggx);
+    for (name, given) in [("metal", s.metal.is_some()), ("ior", s.ior.is_some())] {
+        if given && !normalized && !ggx {
             return err(
                 name,
                 format!(
-                    "`{name}` needs model = \"normalized-phong\" or \"normalized-blinn-phong\""
+                    "`{name}` needs model = \"normalized-phong\", \"normalized-blinn-phong\" \
+                     or \"ggx\""
                 ),
             );
         }
     }
+    if s.lobes.is_some() && !normalized {
+        return err(
+            "lobes",
+            "`lobes` needs model = \"normalized-phong\" or \"normalized-blinn-phong\"".to_string(),
+        );
+    }
+    let roughness = match s.roughness {
+        Some(_) if !rough => {
+            return err(
+                "roughness",
+                "`roughness` needs model = \"oren-nayar\" or \"ggx\"".to_string(),
+            )
+        }
+        None if rough => return Err(place.error(&key("model"), "missing key `roughness`".into())),
+        r => r.map(narrow).unwrap_or(0.0),
+    };
     let surface = match &s.metal {
         None => Surface::Dielectric {
             ior: s.ior.map(narrow),
@@ -485,7 +505,8 @@ fn material(s: &RawSphere, i: usize, place: &Placer<'_>) -> Result<Material, Sce
         }
         None => match (s.ks, s.shininess) {
             (Some(ks), Some(n)) => (narrow(ks), narrow(n)),
-            _ if s.model == RawModel::Lambert => (0.0, 1.0),
+            _ if matches!(s.model, RawModel::Lambert | RawModel::OrenNayar) => (0.0, 1.0),
+            (Some(ks), None) if ggx => (narrow(ks), 1.0),
             (None, _) => return missing("ks"),
             (_, None) => return missing("shininess"),
         },
@@ -500,6 +521,8 @@ fn material(s: &RawSphere, i: usize, place: &Placer<'_>) -> Result<Material, Sce
         RawModel::Lambert => Model::Lambert,
         RawModel::NormalizedPhong => Model::NormalizedPhong(spec),
         RawModel::NormalizedBlinnPhong => Model::NormalizedBlinnPhong(spec),
+        RawModel::OrenNayar => Model::OrenNayar { roughness },
+        RawModel::Ggx => Model::Ggx(Microfacet { roughness, surface }),
     };
     Ok(Material {
         albedo,

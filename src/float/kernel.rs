@@ -273,6 +273,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 Params::select_normalized(here, &Params::splat(&s.params), params);
                 present.schlick |= s.schlick;
                 present.more_lobes |= s.more_lobes;
+                present.oren_nayar |= s.oren_nayar;
+                present.ggx |= s.ggx;
             }
         }
     }
@@ -502,6 +504,11 @@ const NO_MATERIAL: Params<f32> = Params {
     f0: Vec3::new(1.0, 1.0, 1.0),
     schlick: 0.0,
     diffuse_loss: 0.0,
+    oren_nayar: 0.0,
+    on_a: 1.0,
+    on_b: 0.0,
+    ggx: 0.0,
+    alpha2: 1.0,
 };
 
 /// Which spheres an edge's extra shading may hit, per lane: the edge's sphere alone

@@ -70,6 +70,10 @@ pub(crate) struct PreparedSphere {
     pub schlick: bool,
     /// Lobe 1 or 2 has a weight.
     pub more_lobes: bool,
+    /// Oren–Nayar diffuse.
+    pub oren_nayar: bool,
+    /// GGX specular.
+    pub ggx: bool,
     /// The silhouette's constants for edge anti-aliasing (see `edges`).
     #[cfg(feature = "antialias")]
     pub outline: Outline,
@@ -178,6 +182,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 normalized: params.normalized > 0.0,
                 schlick: params.schlick > 0.0,
                 more_lobes: params.weight[1..].iter().any(|&w| w > 0.0),
+                oren_nayar: params.oren_nayar > 0.0,
+                ggx: params.ggx > 0.0,
                 #[cfg(feature = "antialias")]
                 outline: Outline::of(s.center - eye, s.radius, pixel, right, up),
             };
