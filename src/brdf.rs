@@ -46,9 +46,9 @@
 //! symmetric) but not exactly energy conserving: its directional albedo grows toward grazing
 //! light up to `ρ(A + B/2)`, which exceeds `ρ` by up to 1.5 % (at `σ ≈ 0.2`, measured in
 //! `tests/brdf_laws.rs`) and is below `ρ` from `σ ≈ 0.33` on. Lit from behind the viewer
-//! (`L = V`), `s ≤ 0` and `f = ρA/π`: the sphere's brightness follows `N·L` times a constant
-//! smaller than Lambert's, but with a large `σ` the rim, seen at grazing angles, loses less
-//! to `cos θ` than in the Lambert model's picture — which is why the full moon looks flat.
+//! (`L = V`), `s = sin²θ` and the reflected light is `ρ/π·(A·cos θ + B·sin²θ)`: where
+//! Lambert's `cos θ` falls to 0 at the rim, this falls only to `B` (from `A` at the centre),
+//! which is why the full moon looks flat ([`full_moon`](crate::full_moon)).
 //!
 //! GGX. The Cook–Torrance microfacet BRDF `D·G₂·F/(4(N·L)(N·V))` with the GGX
 //! (Trowbridge–Reitz) distribution `D` of width `α = roughness²` (the perceptual

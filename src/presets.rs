@@ -2,7 +2,9 @@
 //!
 //! [`exponent_series`] is the lesson's scene, number for number the same as
 //! `scenes/exponent-series.toml` (the harness tests that the two agree); [`materials`] is
-//! the gallery of models, the same as `scenes/materials.toml`.
+//! the gallery of models, the same as `scenes/materials.toml`; [`microfacets`] sets GGX and
+//! Oren–Nayar next to their normalized counterparts (`scenes/microfacets.toml`), and
+//! [`full_moon`] shows why Oren–Nayar exists (`scenes/full-moon.toml`).
 
 use crate::pixel::LinearRgb;
 use crate::scene::{Camera, Light, Material, Model, Scene, SceneError, Sphere};
@@ -187,6 +189,162 @@ pub fn materials_with_capacity<const S: usize, const L: usize>() -> Result<Scene
                 ks: 0.5,
                 shininess: n,
                 model: Model::NormalizedPhong(dielectric),
+            },
+        })?;
+    }
+    Ok(scene)
+}
+
+/// The microfacet gallery's image size: 960 × 480.
+pub const MICROFACETS_SIZE: (u32, u32) = (960, 480);
+
+/// The GGX roughnesses of the microfacet gallery's columns.
+pub const MICROFACET_ROUGHNESS: [f32; 3] = [0.25, 0.5, 0.75];
+
+/// The normalized Blinn-Phong exponent that matches a GGX roughness `r`: `n = 2/α² − 2`,
+/// `α = r²`, the usual correspondence of the two distributions' peaks (Walter et al.,
+/// *Microfacet models for refraction through rough surfaces*, 2007, for Beckmann; for GGX
+/// too, the two lobes have the same height at `N·H = 1`). 510, 30 and 4.3 for the gallery's
+/// 0.25, 0.5 and 0.75.
+pub fn blinn_phong_exponent(roughness: f32) -> f32 {
+    let alpha = roughness * roughness;
+    2.0 / (alpha * alpha) - 2.0
+}
+
+/// The microfacet gallery: sixteen spheres in three rows, under the materials gallery's
+/// white key light and warm fill, over a near-black background.
+///
+/// Top row: a red plastic (a dielectric with `ior` 1.5, `kd` 0.7, `ks` 0.3) as GGX at
+/// roughness 0.25, 0.5 and 0.75, each followed by its normalized Blinn-Phong counterpart of
+/// exponent [`blinn_phong_exponent`] (same surface and weights). Middle row: the same pairs
+/// for metals, gold at 0.25, copper at 0.5, bronze at 0.75. Bottom row: a Lambert sphere,
+/// then Oren–Nayar with `σ` = 0.3, 0.6 and 1.0 radians, of the same grey albedo: the rougher,
+/// the darker in the middle and the brighter toward the rim on the side of the light. GGX's
+/// highlight has a longer tail than Blinn-Phong's at the same peak, and the rough metals
+/// lose the energy single scattering does not count. Every material is energy conserving.
+/// The same numbers are in `scenes/microfacets.toml`.
+pub fn microfacets() -> Result<Scene, SceneError> {
+    microfacets_with_capacity()
+}
+
+/// [`microfacets`] built straight into a scene of capacities `S` spheres and `L` lights (at
+/// least 16 and 2).
+pub fn microfacets_with_capacity<const S: usize, const L: usize>() -> Result<Scene<S, L>, SceneError>
+{
+    use crate::scene::{Metal, Microfacet, Specular, Surface};
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 17.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 28.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.03))?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(0.45, -0.55, -0.7),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 2.5,
+    })?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(-0.6, -0.2, -0.75),
+        color: LinearRgb::new(1.0, 0.85, 0.7),
+        intensity: 0.6,
+    })?;
+    let columns = [-6.25, -3.75, -1.25, 1.25, 3.75, 6.25];
+    let red = LinearRgb::new(0.7, 0.1, 0.08);
+    let black = LinearRgb::new(0.0, 0.0, 0.0);
+    let plastic = Surface::Dielectric { ior: Some(1.5) };
+    let metals = [Metal::Gold, Metal::Copper, Metal::Bronze];
+    for (row, y) in [2.5f32, 0.0].into_iter().enumerate() {
+        for (k, roughness) in MICROFACET_ROUGHNESS.into_iter().enumerate() {
+            let (surface, albedo, kd, ks) = if row == 0 {
+                (plastic, red, 0.7, 0.3)
+            } else {
+                (Surface::Metal(metals[k]), black, 0.0, 1.0)
+            };
+            // GGX does not use `shininess`: 1, as a scene file leaves it.
+            let base = Material {
+                albedo,
+                kd,
+                ks,
+                shininess: 1.0,
+                model: Model::Ggx(Microfacet { roughness, surface }),
+            };
+            let blinn = Material {
+                shininess: blinn_phong_exponent(roughness),
+                model: Model::NormalizedBlinnPhong(Specular {
+                    surface,
+                    ..Specular::default()
+                }),
+                ..base
+            };
+            for (x, material) in columns[2 * k..].iter().zip([base, blinn]) {
+                scene.add_sphere(Sphere {
+                    center: Vec3::new(*x, y, 0.0),
+                    radius: 1.1,
+                    material,
+                })?;
+            }
+        }
+    }
+    let grey = Material {
+        albedo: LinearRgb::new(0.8, 0.8, 0.8),
+        kd: 1.0,
+        ks: 0.0,
+        shininess: 1.0,
+        model: Model::Lambert,
+    };
+    let bottom = [
+        Model::Lambert,
+        Model::OrenNayar { roughness: 0.3 },
+        Model::OrenNayar { roughness: 0.6 },
+        Model::OrenNayar { roughness: 1.0 },
+    ];
+    for (x, model) in [-5.0, -1.667, 1.667, 5.0].into_iter().zip(bottom) {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, -2.5, 0.0),
+            radius: 1.1,
+            material: Material { model, ..grey },
+        })?;
+    }
+    Ok(scene)
+}
+
+/// The full-moon scene's image size: 640 × 320.
+pub const FULL_MOON_SIZE: (u32, u32) = (640, 320);
+
+/// Two grey spheres lit from behind the viewer (a distant light along the view direction),
+/// as the sun lights the full moon: on the left Lambert, bright in the middle and dark at
+/// the rim (`N·L` falls to 0 there); on the right Oren–Nayar with `σ` = 1.0 radian, whose
+/// brightness is `A·cos θ + B·sin²θ` (times `ρ/π`) and never falls below `B/A` ≈ 0.66 of
+/// its centre's, reached at the rim: a flat disc, like the moon. Same albedo and weights; the Oren–Nayar
+/// sphere is darker in the middle (`A` ≈ 0.62). The same numbers are in
+/// `scenes/full-moon.toml`.
+pub fn full_moon() -> Result<Scene<2, 1>, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 10.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 25.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0))?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(0.0, 0.0, -1.0),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 3.0,
+    })?;
+    for (x, model) in [
+        (-2.0, Model::Lambert),
+        (2.0, Model::OrenNayar { roughness: 1.0 }),
+    ] {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, 0.0, 0.0),
+            radius: 1.7,
+            material: Material {
+                albedo: LinearRgb::new(0.8, 0.8, 0.8),
+                kd: 1.0,
+                ks: 0.0,
+                shininess: 1.0,
+                model,
             },
         })?;
     }

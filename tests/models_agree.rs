@@ -7,7 +7,11 @@
 //!   one level, ≤ 0.1 % of decisions differ.
 //!
 //! On the materials gallery and on 48 random scenes whose spheres use every model
-//! (`common::random_scenes_all_models`). Run with `-- --nocapture` for the tables.
+//! (`common::random_scenes_all_models`). Oren–Nayar and GGX, on the float paths (the fixed
+//! path refuses them with a typed error): bit identity across widths and scalar within one
+//! level of the reference, on the rough-models gallery and on 48 random scenes whose spheres
+//! are mostly those models (`common::random_scenes_rough_models`). Run with
+//! `-- --nocapture` for the tables.
 
 mod common;
 use common::*;
@@ -143,4 +147,68 @@ fn random_all_model_scenes_use_every_model() {
     assert!(spec(&|s| matches!(s.surface, Surface::Metal(_))) > 5);
     assert!(spec(&|s| matches!(s.surface, Surface::Dielectric { ior: Some(_) })) > 5);
     assert!(spec(&|s| s.more_lobes[1].weight > 0.0) > 3);
+}
+
+#[test]
+fn random_rough_model_scenes_are_bit_identical_across_widths() {
+    for (i, scene) in random_scenes_rough_models(48, 0x5eed_a120)
+        .iter()
+        .enumerate()
+    {
+        let (w, h) = (93 + (i as u32 % 9), 61);
+        assert_widths_identical(scene, w, h, &format!("random rough scene {i}"));
+    }
+}
+
+#[test]
+fn random_rough_model_scenes_scalar_matches_the_reference() {
+    let (w, h) = (160, 120);
+    let (mut worst, mut within, mut differ) = (0, 1.0f64, 0.0f64);
+    for scene in random_scenes_rough_models(48, 0x5eed_a121) {
+        let a = check_scalar(&scene, w, h);
+        worst = worst.max(a.max_levels);
+        within = within.min(a.within_one_share());
+        differ = differ.max(a.differ_share());
+    }
+    println!(
+        "48 rough-model scenes {w}x{h}: scalar worst {worst} level(s), lowest within-one \
+         share {:.3}%, largest decisions-differ share {:.4}%",
+        100.0 * within,
+        100.0 * differ
+    );
+}
+
+#[test]
+fn random_rough_model_scenes_use_both_models_and_every_surface() {
+    let scenes = random_scenes_rough_models(48, 0x5eed_a121);
+    let models: Vec<Model> = scenes
+        .iter()
+        .flat_map(|s| s.spheres().iter().map(|s| s.material.model))
+        .collect();
+    let count = |f: &dyn Fn(&Model) -> bool| models.iter().filter(|m| f(m)).count();
+    assert!(count(&|m| matches!(m, Model::OrenNayar { .. })) > 20);
+    let ggx = |f: &dyn Fn(&Surface) -> bool| {
+        count(&|m| matches!(m, Model::Ggx(micro) if f(&micro.surface)))
+    };
+    assert!(ggx(&|s| matches!(s, Surface::Metal(_))) > 5);
+    assert!(ggx(&|s| matches!(s, Surface::Dielectric { ior: Some(_) })) > 5);
+    assert!(ggx(&|s| matches!(s, Surface::Dielectric { ior: None })) > 5);
+}
+
+#[test]
+fn the_fixed_path_refuses_oren_nayar_and_ggx() {
+    for scene in random_scenes_rough_models(8, 0x5eed_a122) {
+        let first = scene
+            .spheres()
+            .iter()
+            .position(|s| matches!(s.material.model, Model::OrenNayar { .. } | Model::Ggx(_)))
+            .expect("a rough model");
+        let got = PreparedFixed::<8, 4>::new(&scene, 32, 24).err();
+        assert_eq!(
+            got,
+            Some(RenderError::ModelNotOnFixedPath {
+                item: Item::Sphere(first)
+            })
+        );
+    }
 }

@@ -2,7 +2,7 @@
 //! `f64` reference.
 //!
 //! ```text
-//! shadeline render  [SCENE.toml | --preset exponent-series|materials]
+//! shadeline render  [SCENE.toml | --preset exponent-series|materials|microfacets|full-moon]
 //!                   [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
 //!                   [--threads N] [--width W] [--height H] [--repeat N]
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
@@ -14,7 +14,10 @@
 //! and the scene's `cos^n` curves to an SVG ([`shadeline_harness::plot`]).
 //!
 //! `--preset materials` is the gallery of reflection models (`scenes/materials.toml`,
-//! 768×432). Without a scene file or preset all three use the built-in exponent series (the numbers of
+//! 768×432), `--preset microfacets` sets GGX and Oren–Nayar next to their normalized
+//! counterparts (`scenes/microfacets.toml`, 960×480), and `--preset full-moon` is a Lambert
+//! and an Oren–Nayar sphere lit from behind the viewer (`scenes/full-moon.toml`, 640×320);
+//! the fixed path refuses the last two (it has no Oren–Nayar or GGX). Without a scene file or preset all three use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file is reported as one line
 //! `FILE:LINE:COL: error: …` on stderr, with exit code 2; so is a bad size or a frame too
 //! large for the memory, as one `error: …` line (the message names the size; buffers are
@@ -97,8 +100,8 @@ enum Command {
 struct SceneChoice {
     /// A scene file (TOML); without one (and without `--preset`), the built-in exponent series.
     scene: Option<PathBuf>,
-    /// A built-in scene instead of a file: `exponent-series` or `materials` (the gallery of
-    /// reflection models).
+    /// A built-in scene instead of a file: `exponent-series`, `materials` (the gallery of
+    /// reflection models), `microfacets` (GGX and Oren–Nayar) or `full-moon`.
     #[arg(long, value_parser = PossibleValuesParser::new(PRESETS))]
     preset: Option<String>,
 }

@@ -580,11 +580,12 @@ pub fn builtin_scene() -> Result<SceneFile, SceneError> {
 }
 
 /// The names [`preset`] knows.
-pub const PRESETS: [&str; 2] = ["exponent-series", "materials"];
+pub const PRESETS: [&str; 4] = ["exponent-series", "materials", "microfacets", "full-moon"];
 
 /// A built-in scene by name (see [`PRESETS`]) in a [`FileScene`], at its scene file's size:
-/// `exponent-series` ([`shadeline::exponent_series`]) or `materials`
-/// ([`shadeline::materials`]).
+/// `exponent-series` ([`shadeline::exponent_series`]), `materials`
+/// ([`shadeline::materials`]), `microfacets` ([`shadeline::microfacets`]) or `full-moon`
+/// ([`shadeline::full_moon`]).
 pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
     match name {
         "exponent-series" => Some(
@@ -593,6 +594,12 @@ pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
         ),
         "materials" => {
             Some(shadeline::materials().and_then(|s| to_file_scene(&s, shadeline::MATERIALS_SIZE)))
+        }
+        "microfacets" => Some(
+            shadeline::microfacets().and_then(|s| to_file_scene(&s, shadeline::MICROFACETS_SIZE)),
+        ),
+        "full-moon" => {
+            Some(shadeline::full_moon().and_then(|s| to_file_scene(&s, shadeline::FULL_MOON_SIZE)))
         }
         _ => None,
     }

@@ -262,7 +262,7 @@ fn a_scene_file_and_a_preset_together_or_an_unwritable_output_are_refused() {
     assert!(stderr(&out).starts_with("missing/lobes.svg: error: cannot write"));
 }
 
-/// The README's two lobe plots are what the binary writes now: after a change to the plot,
+/// The README's lobe plots are what the binary writes now: after a change to the plot,
 /// regenerate them with the commands under their captions (README, "Lobe plots").
 #[test]
 fn the_readme_lobe_plots_are_current() {
@@ -272,6 +272,14 @@ fn the_readme_lobe_plots_are_current() {
         (
             "lobes-materials.svg",
             &["--preset", "materials", "--sphere", "1"][..],
+        ),
+        (
+            "lobes-microfacets.svg",
+            &["--preset", "microfacets", "--sphere", "8"][..],
+        ),
+        (
+            "lobes-full-moon.svg",
+            &["--preset", "full-moon", "--sphere", "1"][..],
         ),
     ] {
         let committed = std::fs::read_to_string(format!("{docs}{file}")).unwrap();
@@ -283,4 +291,74 @@ fn the_readme_lobe_plots_are_current() {
             "docs/{file} is out of date: regenerate it with `{command}`"
         );
     }
+}
+
+/// The reflected total of `lobe` at the sample nearest `theta`.
+fn total_at(lobe: &plot::Lobe, theta: f64) -> f64 {
+    lobe.samples
+        .iter()
+        .min_by(|a, b| (a.theta - theta).abs().total_cmp(&(b.theta - theta).abs()))
+        .unwrap()
+        .total()
+}
+
+#[test]
+fn an_oren_nayar_lobe_leans_toward_the_light_and_a_lambert_lobe_does_not() {
+    // The full moon: sphere 0 Lambert, sphere 1 Oren–Nayar σ = 1.
+    let lambert = plot_svg(&["--preset", "full-moon", "--sphere", "0"], "lambert");
+    let peak = labelled_peak(&lambert);
+    assert!(peak.abs() <= LOBE_STEP, "Lambert peaks at {peak}");
+    let svg = plot_svg(&["--preset", "full-moon", "--sphere", "1"], "oren-nayar");
+    well_formed(&svg);
+    // Grey: one line; no cos^n curve (neither sphere has a cosine-power lobe).
+    assert_eq!(polylines_of(&svg, LOBE_SAMPLES), 1);
+    assert_eq!(polylines_of(&svg, CURVE_SAMPLES), 0);
+    let texts = texts(&svg);
+    assert!(texts
+        .iter()
+        .any(|t| t.contains("sphere 1: Oren-Nayar, σ = 1 rad")));
+    // Backscatter: the peak is on the light's side of the normal, and the surface sends
+    // more back toward the light than toward the mirror direction.
+    let peak = labelled_peak(&svg);
+    assert!(peak < -LOBE_STEP, "Oren–Nayar peaks at {peak}");
+    let moon = shadeline::full_moon().unwrap();
+    let lobe = plot::sample_lobe(&moon.spheres()[1].material, 45.0).unwrap();
+    // Back toward the light f is ρ/π·(A + B·sin 45°·tan 45°), toward the mirror ρA/π:
+    // 1.47 times less at σ = 1.
+    let ratio = total_at(&lobe, -45.0) / total_at(&lobe, 45.0);
+    assert!((ratio - 1.468).abs() < 0.01, "{ratio}");
+    let flat = plot::sample_lobe(&moon.spheres()[0].material, 45.0).unwrap();
+    let (a, b) = (total_at(&flat, -45.0), total_at(&flat, 45.0));
+    assert!((a - b).abs() <= 1e-12 * a, "{a} vs {b}");
+}
+
+#[test]
+fn a_ggx_lobe_peaks_at_the_mirror_and_has_a_longer_tail_than_its_blinn_phong_match() {
+    // The microfacet gallery: sphere 8 is GGX copper at roughness 0.5, sphere 9 its
+    // normalized Blinn-Phong match (n = 30).
+    let svg = plot_svg(&["--preset", "microfacets", "--sphere", "8"], "ggx");
+    well_formed(&svg);
+    assert_eq!(
+        polylines_of(&svg, LOBE_SAMPLES),
+        3,
+        "copper: one line per channel"
+    );
+    let texts = texts(&svg);
+    assert!(texts
+        .iter()
+        .any(|t| t.contains("sphere 8: GGX, roughness 0.5, copper")));
+    let peak = labelled_peak(&svg);
+    assert!((40.0..=45.0).contains(&peak), "GGX peaks at {peak}");
+    let gallery = shadeline::microfacets().unwrap();
+    let ggx = plot::sample_lobe(&gallery.spheres()[8].material, 45.0).unwrap();
+    let blinn = plot::sample_lobe(&gallery.spheres()[9].material, 45.0).unwrap();
+    // Relative to each peak, far from the mirror (θ_o = −15°, the half vector 30° from the
+    // normal) GGX keeps more than Blinn-Phong: the same peak, a longer tail.
+    let tail = |l: &plot::Lobe| total_at(l, -15.0) / l.peak().total();
+    assert!(
+        tail(&ggx) > 1.5 * tail(&blinn),
+        "{} vs {}",
+        tail(&ggx),
+        tail(&blinn)
+    );
 }

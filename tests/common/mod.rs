@@ -344,6 +344,72 @@ pub fn all_models_scene_strategy() -> impl Strategy<Value = TestScene> {
     })
 }
 
+/// Oren–Nayar (σ from 0 to π/2) or GGX (roughness over its whole range, with every surface).
+pub fn rough_model() -> impl Strategy<Value = Model> {
+    let surface = prop_oneof![
+        Just(Surface::Dielectric { ior: None }),
+        (1.01f32..3.0).prop_map(|ior| Surface::Dielectric { ior: Some(ior) }),
+        prop::sample::select(Metal::ALL.to_vec()).prop_map(Surface::Metal),
+    ];
+    prop_oneof![
+        (0.0f32..=std::f32::consts::FRAC_PI_2).prop_map(|roughness| Model::OrenNayar { roughness }),
+        (MIN_GGX_ROUGHNESS..=1.0f32, surface)
+            .prop_map(|(roughness, surface)| Model::Ggx(Microfacet { roughness, surface })),
+    ]
+}
+
+/// Like [`scene_strategy`], with every sphere's material Oren–Nayar or GGX ([`rough_model`])
+/// except one in three, which keeps a model of [`any_model`].
+pub fn rough_models_scene_strategy() -> impl Strategy<Value = TestScene> {
+    let material = (
+        color(0.0, 1.0),
+        0.0f32..1.0,
+        0.0f32..1.0,
+        rough_model(),
+        any_model(),
+    );
+    (scene_strategy(), prop::collection::vec(material, 6)).prop_map(|(scene, materials)| {
+        let mut out = TestScene::new(*scene.camera(), scene.background()).expect("valid");
+        for (i, (s, (albedo, kd, ks, rough, other))) in
+            scene.spheres().iter().zip(materials).enumerate()
+        {
+            let model = if i % 3 == 2 { other } else { rough };
+            let material = Material {
+                albedo,
+                kd,
+                ks,
+                model,
+                ..s.material
+            };
+            out.add_sphere(Sphere { material, ..*s })
+                .expect("valid sphere");
+        }
+        for l in scene.lights() {
+            out.add_light(*l).expect("valid light");
+        }
+        out
+    })
+}
+
+/// `n` random scenes whose spheres are mostly Oren–Nayar and GGX, from a fixed seed.
+pub fn random_scenes_rough_models(n: usize, seed: u64) -> Vec<TestScene> {
+    let config = Config {
+        rng_seed: RngSeed::Fixed(seed),
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner = TestRunner::new(config);
+    let strategy = rough_models_scene_strategy();
+    (0..n)
+        .map(|_| {
+            strategy
+                .new_tree(&mut runner)
+                .expect("strategy generates")
+                .current()
+        })
+        .collect()
+}
+
 /// `n` random scenes using every model, from a fixed seed.
 pub fn random_scenes_all_models(n: usize, seed: u64) -> Vec<TestScene> {
     let config = Config {
