@@ -212,3 +212,19 @@ fn the_fixed_path_refuses_oren_nayar_and_ggx() {
         );
     }
 }
+
+#[test]
+fn microfacet_gallery_and_full_moon_are_bit_identical_and_match_the_reference() {
+    let gallery = microfacets().unwrap();
+    let (w, h) = MICROFACETS_SIZE;
+    assert_widths_identical(&gallery, w, h, "microfacets");
+    assert_widths_identical(&gallery, 67, 31, "microfacets 67x31");
+    println!(
+        "microfacets {w}x{h}: scalar {:?}",
+        check_scalar(&gallery, w, h)
+    );
+    let moon = full_moon().unwrap();
+    let (w, h) = FULL_MOON_SIZE;
+    assert_widths_identical(&moon, w, h, "full moon");
+    println!("full moon {w}x{h}: scalar {:?}", check_scalar(&moon, w, h));
+}

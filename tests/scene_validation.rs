@@ -478,3 +478,60 @@ fn render_sizes_and_buffers_are_checked() {
         })
     );
 }
+
+fn with_model(model: Model) -> Sphere {
+    let mut s = sphere();
+    s.material.model = model;
+    s
+}
+
+#[test]
+fn oren_nayar_roughness_is_checked() {
+    let on = |roughness: f32| with_model(Model::OrenNayar { roughness });
+    let err = |p| invalid(Item::Sphere(0), "roughness", p);
+    for ok in [0.0, 0.5, MAX_OREN_NAYAR_ROUGHNESS] {
+        scene().add_sphere(on(ok)).unwrap();
+    }
+    assert_eq!(sphere_error(on(-0.01)), err(Problem::Negative));
+    assert_eq!(sphere_error(on(1.6)), err(Problem::TooLarge));
+    assert_eq!(sphere_error(on(f32::NAN)), err(Problem::NotFinite));
+    assert!(sphere_error(on(1.6)).to_string().contains("π/2"));
+}
+
+#[test]
+fn ggx_roughness_and_ior_are_checked() {
+    let ggx = |roughness: f32, surface| with_model(Model::Ggx(Microfacet { roughness, surface }));
+    let plain = Surface::Dielectric { ior: None };
+    let err = |f, p| invalid(Item::Sphere(0), f, p);
+    for ok in [MIN_GGX_ROUGHNESS, 0.5, 1.0] {
+        scene().add_sphere(ggx(ok, plain)).unwrap();
+    }
+    assert_eq!(
+        sphere_error(ggx(0.04, plain)),
+        err("roughness", Problem::TooSmall)
+    );
+    assert!(sphere_error(ggx(0.0, plain))
+        .to_string()
+        .contains("at least 5e-2"));
+    assert_eq!(
+        sphere_error(ggx(1.01, plain)),
+        err("roughness", Problem::TooLarge)
+    );
+    assert_eq!(
+        sphere_error(ggx(f32::INFINITY, plain)),
+        err("roughness", Problem::NotFinite)
+    );
+    let glass = |ior| Surface::Dielectric { ior: Some(ior) };
+    assert_eq!(
+        sphere_error(ggx(0.5, glass(1.0))),
+        err("ior", Problem::NotAboveOne)
+    );
+    // The roughness is reported before the ior.
+    assert_eq!(
+        sphere_error(ggx(2.0, glass(0.5))),
+        err("roughness", Problem::TooLarge)
+    );
+    scene()
+        .add_sphere(ggx(0.5, Surface::Metal(Metal::Copper)))
+        .unwrap();
+}

@@ -1,11 +1,12 @@
 //! Fuzz target `scene_file`: arbitrary bytes through the harness's TOML scene parser,
 //! `shadeline_harness::parse_scene`, with every model and material key (`model`, `metal`,
-//! `ior`, `lobes`) in its dictionary (`fuzz/scene_file.dict`) and seeds.
+//! `ior`, `lobes`, `roughness`) in its dictionary (`fuzz/scene_file.dict`) and seeds.
 //!
 //! Proves: any UTF-8 text gives a scene or an error, never a panic; an error's line and column
 //! lie inside the text (1-based, the column counted in characters) and it formats; a parsed
 //! scene has a size the core accepts, and its middle row renders (at a width of at most 67)
-//! on the scalar, 8-lane and fixed paths (the fixed path may refuse it as out of its range)
+//! on the scalar, 8-lane and fixed paths (the fixed path may refuse it as out of its range,
+//! or for an Oren–Nayar or GGX sphere)
 //! to finite, non-negative colour, with the 8-lane path bit-identical to the scalar one, and
 //! in every level format with one of the four encodings (the text's length modulo 4 picks
 //! it), also as display bytes, again bit-identical between the float paths.
@@ -86,6 +87,7 @@ fuzz_target!(|data: &[u8]| {
             match PreparedFixed::<MAX_SPHERES, MAX_LIGHTS>::new(&file.scene, w, h) {
                 Ok(fixed) => check_finite(&render_row(&fixed, y, encoding).linear, "fixed"),
                 Err(RenderError::OutOfFixedRange { .. }) => {}
+                Err(RenderError::ModelNotOnFixedPath { .. }) => {}
                 Err(e) => panic!("fixed: a parsed scene was refused: {e}"),
             }
         }

@@ -13,15 +13,19 @@
 //!
 //! Every check is generic over [`Render`]; the paths are listed once, in [`for_each_path`],
 //! so a new path is one more line there. The fixed-point path is the one path allowed to
-//! refuse a valid scene (with `RenderError::OutOfFixedRange`), and its linear output is
+//! refuse a valid scene (with `RenderError::OutOfFixedRange`, or
+//! `RenderError::ModelNotOnFixedPath` for Oren–Nayar and GGX), and its linear output is
 //! 16.16 fixed point, so a miss is the background quantized, not the background's bits.
 
 use arbitrary::Arbitrary;
 use shadeline::encoding::{encode_levels, linear_code, linear_code_fixed};
-use shadeline::scene::{MAX_COORDINATE, MAX_INTENSITY, MAX_SHININESS, MAX_VALUE, MIN_RADIUS};
+use shadeline::scene::{
+    MAX_COORDINATE, MAX_INTENSITY, MAX_OREN_NAYAR_ROUGHNESS, MAX_SHININESS, MAX_VALUE,
+    MIN_GGX_ROUGHNESS, MIN_RADIUS,
+};
 use shadeline::{
     Bgr565, BytePixel, Camera, Encoding, FixedShade, Gray8, HitRecord, Item, ItemKind, Light,
-    LinearRgb, Lobe, Material, Metal, Model, Pixel, Prepared, PreparedFixed, Problem, Render,
+    LinearRgb, Lobe, Material, Metal, Microfacet, Model, Pixel, Prepared, PreparedFixed, Problem, Render,
     RenderError, Rgb565, Rgb888, Scalar, Scene, SceneError, Shade, Simd4, Simd8, Specular, Sphere,
     Surface, Vec3, MORE_LOBES,
 };
@@ -158,6 +162,10 @@ pub enum ModelIn {
     NormalizedPhong(SpecularIn),
     /// [`Model::NormalizedBlinnPhong`].
     NormalizedBlinnPhong(SpecularIn),
+    /// [`Model::OrenNayar`] with this roughness.
+    OrenNayar(Num),
+    /// [`Model::Ggx`] with this roughness and surface.
+    Ggx(Num, SurfaceIn),
 }
 
 /// The normalized models' options: the surface and lobes 1 and 2.
@@ -192,16 +200,15 @@ pub struct LobeIn {
 impl ModelIn {
     /// The model this stands for.
     pub fn model(self) -> Model {
-        let spec = |s: SpecularIn| Specular {
-            surface: match s.surface {
-                SurfaceIn::Dielectric => Surface::Dielectric { ior: None },
-                SurfaceIn::Fresnel(ior) => Surface::Dielectric {
-                    ior: Some(ior.value()),
-                },
-                SurfaceIn::Metal(k) => {
-                    Surface::Metal(Metal::ALL[usize::from(k) % Metal::ALL.len()])
-                }
+        let surface = |s: SurfaceIn| match s {
+            SurfaceIn::Dielectric => Surface::Dielectric { ior: None },
+            SurfaceIn::Fresnel(ior) => Surface::Dielectric {
+                ior: Some(ior.value()),
             },
+            SurfaceIn::Metal(k) => Surface::Metal(Metal::ALL[usize::from(k) % Metal::ALL.len()]),
+        };
+        let spec = |s: SpecularIn| Specular {
+            surface: surface(s.surface),
             more_lobes: s.lobes.map(|l| Lobe {
                 weight: l.weight.value(),
                 shininess: l.shininess.value(),
@@ -213,6 +220,13 @@ impl ModelIn {
             ModelIn::Lambert => Model::Lambert,
             ModelIn::NormalizedPhong(s) => Model::NormalizedPhong(spec(s)),
             ModelIn::NormalizedBlinnPhong(s) => Model::NormalizedBlinnPhong(spec(s)),
+            ModelIn::OrenNayar(r) => Model::OrenNayar {
+                roughness: r.value(),
+            },
+            ModelIn::Ggx(r, s) => Model::Ggx(Microfacet {
+                roughness: r.value(),
+                surface: surface(s),
+            }),
         }
     }
 }
@@ -337,6 +351,30 @@ mod model {
             ("shininess", positive(m.shininess, MAX_SHININESS)),
         ];
         let first = checks.into_iter().find_map(|(f, p)| p.map(|p| (f, p)));
+        // Oren–Nayar's and GGX's roughness, after the fields every model has; then GGX's ior.
+        let roughness = match m.model {
+            Model::OrenNayar { roughness } => {
+                non_negative(&[roughness], MAX_OREN_NAYAR_ROUGHNESS)
+            }
+            Model::Ggx(micro) => finite(&[micro.roughness])
+                .or((micro.roughness < MIN_GGX_ROUGHNESS).then_some(Problem::TooSmall))
+                .or((micro.roughness > 1.0).then_some(Problem::TooLarge)),
+            _ => None,
+        };
+        let ggx_ior = match m.model {
+            Model::Ggx(Microfacet {
+                surface: Surface::Dielectric { ior: Some(ior) },
+                ..
+            }) => finite(&[ior])
+                .or((ior <= 1.0).then_some(Problem::NotAboveOne))
+                .or((ior > MAX_VALUE).then_some(Problem::TooLarge)),
+            _ => None,
+        };
+        let first = first.or_else(|| {
+            [("roughness", roughness), ("ior", ggx_ior)]
+                .into_iter()
+                .find_map(|(f, p)| p.map(|p| (f, p)))
+        });
         let Some(spec) = m.model.specular() else {
             return first;
         };

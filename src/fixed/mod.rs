@@ -66,6 +66,9 @@
 //! normalized models' work (`N·L` scaling, Fresnel, more lobes). The models' budget against
 //! the reference is tested in `tests/models_agree.rs`.
 //!
+//! Oren–Nayar and GGX are not implemented here yet: a scene with such a sphere is refused
+//! (below), so the fixed path never renders a model it does not have.
+//!
 //! # Refused scenes
 //!
 //! [`PreparedFixed::new`] returns [`RenderError::OutOfFixedRange`](crate::RenderError) naming
@@ -73,6 +76,8 @@
 //! extent, [`MIN_SCALED_RADIUS`] after scaling), `vfov` (`tan(vfov/2)·max(1, w/h)` above
 //! [`MAX_PLANE_SCALE`]), `albedo`/`kd`/`ks`/`color`/`intensity` (a channel of `albedo`,
 //! `kd·albedo`, `ks`, a distant light's colour or `colour·intensity` above [`MAX_LEVEL`]).
+//! A sphere whose model is Oren–Nayar or GGX is refused with
+//! [`RenderError::ModelNotOnFixedPath`](crate::RenderError) naming the sphere.
 //!
 //! # Costs
 //!
