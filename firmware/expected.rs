@@ -32,3 +32,10 @@ pub const SCALAR_COVERED: u64 = 11_840;
 /// Pixels of that frame whose primary ray hits a sphere on the fixed path (its ray
 /// decisions differ from the scalar path's at one silhouette pixel).
 pub const FIXED_COVERED: u64 = 11_839;
+
+/// CRC32 of the microfacet gallery (`shadeline::microfacets`, GGX, Oren–Nayar and their
+/// normalized matches) at 320×240 rendered by `Prepared::<Scalar>` into `Rgb565`: the M4F
+/// firmware's `scalar-microfacets` run (feature `microfacets`; reported, not budgeted).
+pub const MICROFACETS_SCALAR_RGB565_CRC32: u32 = 0x9be3_dc87;
+/// Pixels of that frame whose primary ray hits a sphere.
+pub const MICROFACETS_SCALAR_COVERED: u64 = 38_796;

@@ -4,7 +4,9 @@
 //! value is also `tests/fixed_golden.rs`'s golden; both tests failing together is the sign of
 //! a deliberate change to the fixed kernel.
 
-use shadeline::{exponent_series, HitRecord, Prepared, PreparedFixed, Render, Rgb565, Scalar};
+use shadeline::{
+    exponent_series, microfacets, HitRecord, Prepared, PreparedFixed, Render, Rgb565, Scalar,
+};
 
 mod expected {
     include!("../firmware/expected.rs");
@@ -88,5 +90,20 @@ fn covered_counts_match_the_firmware_constants() {
         (covered(&scalar), covered(&fixed)),
         (expected::SCALAR_COVERED, expected::FIXED_COVERED),
         "host covered counts (scalar, fixed): update firmware/expected.rs"
+    );
+}
+
+#[test]
+fn microfacet_gallery_crc_and_covered_count_match_the_firmware_constants() {
+    let scene = microfacets().expect("built-in scene is valid");
+    let path = Prepared::<Scalar>::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
+    let (crc, covered) = (rgb565_crc32(&frame(&path)), covered(&path));
+    assert_eq!(
+        (crc, covered),
+        (
+            expected::MICROFACETS_SCALAR_RGB565_CRC32,
+            expected::MICROFACETS_SCALAR_COVERED
+        ),
+        "host microfacets CRC {crc:#010x}, covered {covered}: update firmware/expected.rs"
     );
 }

@@ -110,12 +110,13 @@ fn antialias_is_read_off_by_default_and_checked() {
 
 #[test]
 fn unknown_key() {
-    let text = edited("ks = 0.1\n", "ks = 0.1\nroughness = 3\n");
+    // (`roughness` is a key now, of the Oren–Nayar and GGX models.)
+    let text = edited("ks = 0.1\n", "ks = 0.1\nglossiness = 3\n");
     assert_error(
         &text,
-        "roughness",
-        Some("sphere[2].roughness"),
-        "unknown key `roughness`",
+        "glossiness",
+        Some("sphere[2].glossiness"),
+        "unknown key `glossiness`",
     );
 }
 

@@ -3,7 +3,9 @@
 //! float) and the fixed-point path, each reported with its CRC, instruction count and stack
 //! high-water mark over semihosting. Exits 0 only if every CRC matches. With the feature
 //! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
-//! (`scalar-aa`).
+//! (`scalar-aa`); with the feature `microfacets`, it also renders the microfacet gallery
+//! (`scalar-microfacets`: GGX and Oren–Nayar spheres next to normalized Blinn-Phong and
+//! Lambert ones).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -34,6 +36,10 @@ fn main() -> ! {
     static mut FIXED: PreparedFixed = PreparedFixed::EMPTY;
     #[cfg(feature = "antialias")]
     static mut SCALAR_AA: Option<Prepared<Scalar>> = None;
+    #[cfg(feature = "microfacets")]
+    static mut MICRO_SCENE: Option<Scene> = None;
+    #[cfg(feature = "microfacets")]
+    static mut MICRO: Option<Prepared<Scalar>> = None;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -80,6 +86,29 @@ fn main() -> ! {
         (None, _) => {
             session.note("shadeline-fw error=prepare-scalar-aa\n");
             session.fail();
+        }
+    }
+    #[cfg(feature = "microfacets")]
+    {
+        let (Some(micro), _) = session.build(MICRO_SCENE, shadeline::microfacets) else {
+            session.note("shadeline-fw error=scene-microfacets\n");
+            exit(false)
+        };
+        match session.build(MICRO, || Prepared::<Scalar>::new(micro, WIDTH, HEIGHT)) {
+            (Some(path), prepare) => session.run(
+                "scalar-microfacets",
+                path,
+                Sink::Frame(FRAME),
+                prepare,
+                Expected {
+                    crc: common::expected::MICROFACETS_SCALAR_RGB565_CRC32,
+                    covered: common::expected::MICROFACETS_SCALAR_COVERED,
+                },
+            ),
+            (None, _) => {
+                session.note("shadeline-fw error=prepare-scalar-microfacets\n");
+                session.fail();
+            }
         }
     }
     match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
