@@ -102,7 +102,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The nearest sphere with `t > ε` among those whose span on this row covers `x`.
     #[inline(always)]
-    pub(crate) fn hit(
+    fn hit(
         &self,
         d: V3<Unit>,
         x: u32,
@@ -125,7 +125,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The hit point `P = eye + t·d` and the unit normal `N = (P − C)·(1/r)`.
     #[inline(always)]
-    pub(crate) fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
+    fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
         let step = d.map(|c| len_times_unit(t, c));
         let p = each3(|i| to_len(self.eye[i].to_bits() as i64 + step[i]));
         let (y, shift) = s.inv_radius;

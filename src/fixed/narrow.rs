@@ -59,13 +59,10 @@
 //!   `DELTA_LOBE` that holds near the reflection, where that maximum lies.
 //!
 //! A pixel below the cutoff of a sphere without `lobe_everywhere` (the bright part of a
-//! narrow highlight) is shaded by the full-width kernel. A pixel where both `N·V` and
+//! narrow highlight) is shaded by the full-width kernel, and so is one where both `N·V` and
 //! `|N·L|` are below 0.3 (near the silhouette, where `N`'s error grows, and dark, where an
-//! sRGB level is smallest) is [`Narrow::Grazing`]: it takes its hit, `D̂` and `N` from the
-//! full-width kernel, rounded to Q15, and its lights from this kernel, which is enough
-//! there because the error was `N`'s, not the lights'. On the exponent series at 320×240, 69
-//! of 11,839 covered pixels go to the full-width kernel and 234 are grazing (test
-//! `exponent_series_hands_few_pixels_over`).
+//! sRGB level is smallest). On the exponent series at 320×240 that is 303 of 11,839 covered
+//! pixels (2.6%; test `exponent_series_hands_few_pixels_over`).
 //!
 //! Every step is integer arithmetic with the same bits on every target; products are
 //! 16×16→32 bits (`|x| ≤ 2¹⁵` operands) except in [`rsqrt`], the square root `N·V`, and the
@@ -83,7 +80,7 @@ use crate::runs::Span;
 /// One, Q15.
 const ONE: i32 = 1 << 15;
 
-/// `N·V` and `|N·L|` below this (0.3, Q15) together make a pixel [`Narrow::Grazing`].
+/// `N·V` and `|N·L|` below this (0.3, Q15) together hand a pixel over.
 const GRAZING: i32 = 9830;
 
 /// What the narrow kernel made of a pixel.
@@ -92,10 +89,6 @@ pub(crate) enum Narrow {
     Done(Option<Shaded>),
     /// The full-width kernel must shade this pixel.
     Precise,
-    /// The pixel is near the silhouette and the terminator: its surface must come from the
-    /// full-width kernel's hit and normal ([`PreparedFixed::narrow_shade_exact_surface`]),
-    /// its lights can still come from this kernel.
-    Grazing,
 }
 
 /// One sphere along a run: its values at column `max(x, span.start)` of the run's current
@@ -172,9 +165,6 @@ struct Surface {
     n: V3<i32>,
     /// `N·V`, Q15.
     nv: i32,
-    /// Whether `N` and `D̂` are the full-width kernel's, rounded to Q15, rather than this
-    /// kernel's own: then they are within half a step of exact, up to the silhouette.
-    exact: bool,
 }
 
 /// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern `64..=255` of a value in `[¼, 1)`.
@@ -461,53 +451,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             dh,
             n,
             nv: hit.nv,
-            exact: false,
         })
-    }
-
-    /// A [`Narrow::Grazing`] pixel along the unit ray `d`: the full-width kernel's `hit` and
-    /// `normal` stages, their `D̂` and `N` rounded to Q15, then this kernel's lights.
-    /// [`Narrow::Precise`] where the lobe still needs the full-width kernel.
-    #[inline(always)]
-    pub(crate) fn narrow_shade_exact_surface(
-        &self,
-        d: V3<Unit>,
-        x: u32,
-        spans: &[Option<Span>],
-        record_hits: bool,
-    ) -> Narrow {
-        let Some((index, sphere, t)) = self.hit(d, x, spans) else {
-            return Narrow::Done(None);
-        };
-        let (_, n) = self.normal(sphere, d, t);
-        let q15 = |v: V3<Unit>| v.map(|c| ((c.to_bits() >> 14) + 1) >> 1);
-        let (dh, n) = (q15(d), q15(n));
-        let nv = -each3(|i| mul_ii(dh[i], n[i]))
-            .iter()
-            .sum::<i64>()
-            .clamp(-(1 << 45), 1 << 45) as i32
-            >> 15;
-        let surface = Surface {
-            index,
-            dh,
-            n,
-            nv: nv.clamp(0, ONE),
-            exact: true,
-        };
-        self.narrow_lights(&surface, record_hits)
     }
 
     /// The `lights` and `combine` stages at `surface`, or [`Narrow::Precise`] where the lobe
     /// needs the full-width kernel.
     #[inline(always)]
     fn narrow_lights(&self, surface: &Surface, record_hits: bool) -> Narrow {
-        let Surface {
-            index,
-            dh,
-            n,
-            nv,
-            exact,
-        } = *surface;
+        let Surface { index, dh, n, nv } = *surface;
         debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
         let Some(sphere) = self.spheres.get(index) else {
             return Narrow::Done(None);
@@ -527,8 +478,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             // Toward the silhouette N's error grows as 1/(N·V); where it also lies near the
             // terminator, the diffuse term is dark, where an sRGB level is smallest: there
             // the full-width kernel shades.
-            if !exact && nv < GRAZING && nl.abs() < GRAZING {
-                return Narrow::Grazing;
+            if nv < GRAZING && nl.abs() < GRAZING {
+                return Narrow::Precise;
             }
             let own = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
             let casters = self.casters(index, light_index);
@@ -869,21 +820,16 @@ mod tests {
         let scene = crate::exponent_series().unwrap();
         let frame = PreparedFixed::<16, 8>::new(&scene, 320, 240).unwrap();
         let all = surfaces(&frame);
-        let (mut precise, mut grazing) = (0, 0);
-        for (s, _) in &all {
-            match frame.narrow_lights(s, false) {
-                Narrow::Precise => precise += 1,
-                Narrow::Grazing => grazing += 1,
-                Narrow::Done(_) => {}
-            }
-        }
+        let precise = all
+            .iter()
+            .filter(|(s, _)| matches!(frame.narrow_lights(s, false), Narrow::Precise))
+            .count();
+        let share = precise as f64 / all.len() as f64;
         std::println!(
-            "of {} covered pixels, {precise} use the full-width kernel and {grazing} its surface",
+            "{precise} of {} covered pixels use the full-width kernel",
             all.len()
         );
-        let share = |k: usize| k as f64 / all.len() as f64;
-        assert!(share(precise) < 0.01, "{precise} handed over");
-        assert!(share(precise + grazing) < 0.03, "{grazing} grazing");
+        assert!(share < 0.03, "{:.2}% handed over", 100.0 * share);
     }
 
     #[test]

@@ -56,29 +56,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         ray(dir).and_then(|d| self.shade(d, x, spans, record_hits))
     }
 
-    /// A pixel the narrow kernel hands over (`handed`, [`Narrow::Grazing`] or
-    /// [`Narrow::Precise`]) on its unnormalized direction `dir`: a grazing pixel gets the
-    /// full-width surface and the narrow lights, and the full-width kernel shades whatever
-    /// the narrow lights still hand over.
-    #[inline(never)]
-    fn hand_over(
-        &self,
-        handed: Narrow,
-        dir: V3<I16F48>,
-        x: u32,
-        spans: &[Option<Span>],
-        record_hits: bool,
-    ) -> Option<Shaded> {
-        let d = ray(dir)?;
-        if let Narrow::Grazing = handed {
-            if let Narrow::Done(shaded) = self.narrow_shade_exact_surface(d, x, spans, record_hits)
-            {
-                return shaded;
-            }
-        }
-        self.shade(d, x, spans, record_hits)
-    }
-
     /// [`Self::direction`] where the narrow kernel is set up: every direction's components
     /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
     /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
@@ -145,10 +122,10 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                 for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                     let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS) {
                         Narrow::Done(shaded) => shaded,
-                        handed => {
+                        Narrow::Precise => {
                             let dir = self.narrow_direction_wide(column, y);
                             debug_assert_eq!(dir, self.direction(column, y));
-                            self.hand_over(handed, dir, column, &spans, P::NEEDS_HITS)
+                            self.shade_ray(dir, column, &spans, P::NEEDS_HITS)
                         }
                     };
                     self.narrow_advance(&mut narrow);
