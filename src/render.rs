@@ -79,6 +79,13 @@ pub enum RenderError {
         /// The field's name, as spelled in the scene file.
         field: &'static str,
     },
+    /// A point light has a radius (a sphere light): the float and fixed paths render point
+    /// lights of radius 0 only; the `f64` [`reference`](crate::reference) renders sphere
+    /// lights.
+    SphereLight {
+        /// The light's index.
+        light: usize,
+    },
 }
 
 impl fmt::Display for RenderError {
@@ -111,6 +118,10 @@ impl fmt::Display for RenderError {
             RenderError::OutOfFixedRange { item, field } => write!(
                 f,
                 "{item}: `{field}` does not fit the fixed-point path's number formats"
+            ),
+            RenderError::SphereLight { light } => write!(
+                f,
+                "light {light}: `radius` is not 0, and this path renders point lights of radius 0 only"
             ),
         }
     }

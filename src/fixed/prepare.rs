@@ -429,7 +429,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     position,
                     color,
                     intensity,
+                    radius,
                 } => {
+                    if radius > 0.0 {
+                        return Err(RenderError::SphereLight { light: i });
+                    }
                     let power = Vec3::new(color.r, color.g, color.b)
                         .scale(intensity / (4.0 * core::f32::consts::PI))
                         .scale(pow2(2 * k));
