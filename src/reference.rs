@@ -6,6 +6,12 @@
 //! It reads the scene's numbers and the one model constant every path shares,
 //! [`Scene::ray_epsilon`](crate::Scene::ray_epsilon). It is slow on purpose (no spans, no
 //! prepare step), and it is not meant for firmware, though it is `no_std` like the rest.
+//!
+//! It is also the one renderer of sphere lights (point lights with a `radius`): it
+//! integrates each over the cone of directions toward the light's sphere, with a shadow ray
+//! per direction, which gives wider highlights, exact diffuse light above the horizon (the
+//! same as the point at the centre) and penumbrae, to measure the paths against when they
+//! render sphere lights too.
 
 use crate::pixel::HitRecord;
 use crate::render::RenderError;
@@ -218,7 +224,97 @@ fn ggx_lobe(roughness: f64, n: D3, l: D3, v: D3, h: D3) -> f64 {
     d * g2 / (4.0 * cos_i * cos_o)
 }
 
+/// Strata per axis of a sphere light's cone: the reference integrates a sphere light over
+/// `SPHERE_LIGHT_STRATA²` directions of equal solid angle per pixel (`cos θ` evenly from 1 to
+/// the cone's rim, the azimuth evenly around it, one direction through each cell's middle).
+/// Against twice as many per axis, the frames of `tests/sphere_lights.rs` differ by at most
+/// 0.34 of an 8-bit level.
+pub const SPHERE_LIGHT_STRATA: usize = 64;
+
+/// A point light with a radius, as the reference integrates it.
+struct SphereLight {
+    center: D3,
+    radius: f64,
+    /// `colour·intensity`, the light's power per channel.
+    power: [f64; 3],
+}
+
+impl SphereLight {
+    /// Integrates the light over its solid angle as seen from the surface point `p`: the cone
+    /// of directions toward the sphere, of half-angle `α` with `sin α = R/d`, split into
+    /// `strata × strata` cells of equal solid angle (`cos θ` evenly from 1 to `cos α`, `φ`
+    /// evenly around the axis) and one direction through the middle of each. Each direction
+    /// carries the sphere's radiance `power/(4π²R²)` times its cell's solid angle and goes
+    /// to `arrive` with the shadow ray from `origin` to the sphere's near surface. Returns
+    /// whether every direction was blocked.
+    ///
+    /// As `R → 0` the sum is the point light's `power/(4πd²)`; with the whole cone above the
+    /// horizon and unblocked, a Lambertian surface gets exactly that too, whatever `R` (the
+    /// tests check both).
+    fn integrate(
+        &self,
+        p: D3,
+        origin: D3,
+        strata: usize,
+        arrive: &mut impl FnMut(D3, [f64; 3], f64) -> bool,
+    ) -> bool {
+        let to_center = self.center.sub(p);
+        let d = to_center.len();
+        let axis = to_center.unit();
+        let sin_a = (self.radius / d).min(1.0);
+        let cos_a = libm::sqrt((1.0 - sin_a * sin_a).max(0.0));
+        // An orthonormal basis around the axis.
+        let helper = if axis.x.abs() < 0.9 {
+            D3 {
+                x: 1.0,
+                y: 0.0,
+                z: 0.0,
+            }
+        } else {
+            D3 {
+                x: 0.0,
+                y: 1.0,
+                z: 0.0,
+            }
+        };
+        let b1 = axis.cross(helper).unit();
+        let b2 = axis.cross(b1);
+        let cells = (strata * strata) as f64;
+        let solid_angle = 2.0 * core::f64::consts::PI * (1.0 - cos_a);
+        let radiance =
+            1.0 / (4.0 * core::f64::consts::PI * core::f64::consts::PI * self.radius * self.radius);
+        let carried = self.power.map(|c| c * radiance * solid_angle / cells);
+        let mut all_blocked = true;
+        for i in 0..strata {
+            let cos_t = 1.0 - (i as f64 + 0.5) / strata as f64 * (1.0 - cos_a);
+            let sin_t = libm::sqrt((1.0 - cos_t * cos_t).max(0.0));
+            for j in 0..strata {
+                let phi = 2.0 * core::f64::consts::PI * (j as f64 + 0.5) / strata as f64;
+                let l = axis
+                    .mul(cos_t)
+                    .add(b1.mul(sin_t * libm::cos(phi)))
+                    .add(b2.mul(sin_t * libm::sin(phi)))
+                    .unit();
+                // The near surface of the light along `l` from `origin`; at the cone's rim the
+                // lifted origin may just miss it: then the closest approach.
+                let oc = origin.sub(self.center);
+                let b = oc.dot(l);
+                let disc = b * b - (oc.dot(oc) - self.radius * self.radius);
+                let t_max = -b - libm::sqrt(disc.max(0.0));
+                if !arrive(l, carried, t_max) {
+                    all_blocked = false;
+                }
+            }
+        }
+        all_blocked
+    }
+}
+
 /// The reference colour and hit record of pixel `(x, y)` of a `width × height` image.
+///
+/// A sphere light (a point light with a radius) is integrated over its solid angle with
+/// [`SPHERE_LIGHT_STRATA`]² directions; its bit in the hit record is set where every one of
+/// them is blocked (the umbra).
 pub fn shade_pixel<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
     width: u32,
@@ -226,6 +322,20 @@ pub fn shade_pixel<const S: usize, const L: usize>(
     x: u32,
     y: u32,
 ) -> RefPixel {
+    shade_pixel_with_strata(scene, width, height, x, y, SPHERE_LIGHT_STRATA)
+}
+
+/// [`shade_pixel`] with `strata × strata` directions per sphere light (at least 1): the
+/// tests use it to show that [`SPHERE_LIGHT_STRATA`] is enough.
+pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    width: u32,
+    height: u32,
+    x: u32,
+    y: u32,
+    strata: usize,
+) -> RefPixel {
+    let strata = strata.max(1);
     let cam = scene.camera();
     let eye = D3::of(cam.position);
     let forward = D3::of(cam.look_at).sub(eye).unit();
@@ -265,48 +375,15 @@ pub fn shade_pixel<const S: usize, const L: usize>(
     // Σ I·f·cos θ_i of the normalized models and Lambert.
     let mut other = [0.0f64; 3];
     let mut shadowed = 0u32;
-    for (li, light) in scene.lights().iter().enumerate() {
-        let (l, arriving, t_max) = match *light {
-            Light::Distant {
-                direction,
-                color,
-                intensity,
-            } => {
-                let i = intensity as f64;
-                (
-                    D3::of(direction).unit().mul(-1.0),
-                    [color.r as f64 * i, color.g as f64 * i, color.b as f64 * i],
-                    f64::INFINITY,
-                )
-            }
-            Light::Point {
-                position,
-                color,
-                intensity,
-            } => {
-                let lv = D3::of(position).sub(p);
-                let dist = lv.len();
-                let scale = intensity as f64 / (4.0 * core::f64::consts::PI * dist * dist);
-                let a = |c: f32| {
-                    let v = c as f64 * scale;
-                    if v.is_nan() || v > ARRIVING_CAP {
-                        ARRIVING_CAP
-                    } else {
-                        v
-                    }
-                };
-                (lv.unit(), [a(color.r), a(color.g), a(color.b)], dist)
-            }
-        };
+    // One arriving direction `l` (unit, toward the light) carrying `arriving`, with a shadow
+    // ray of length `t_max`: added to the sums unless a sphere blocks it (then `true`).
+    let mut arrive = |l: D3, arriving: [f64; 3], t_max: f64| -> bool {
         let blocked = scene.spheres().iter().any(|s| {
             intersect(shadow_origin, l, D3::of(s.center), s.radius as f64, eps)
                 .is_some_and(|ts| ts < t_max)
         });
         if blocked {
-            if li < 32 {
-                shadowed |= 1 << li;
-            }
-            continue;
+            return true;
         }
         let n_dot_l = n.dot(l).max(0.0);
         if !matches!(m.model, Model::Phong | Model::BlinnPhong) {
@@ -314,7 +391,7 @@ pub fn shade_pixel<const S: usize, const L: usize>(
             for c in 0..3 {
                 other[c] += arriving[c] * f[c] * n_dot_l;
             }
-            continue;
+            return false;
         }
         let cosine = match m.model {
             Model::BlinnPhong => {
@@ -339,6 +416,59 @@ pub fn shade_pixel<const S: usize, const L: usize>(
         for c in 0..3 {
             diffuse[c] += arriving[c] * n_dot_l;
             specular[c] += arriving[c] * lobe;
+        }
+        false
+    };
+    for (li, light) in scene.lights().iter().enumerate() {
+        let blocked = match *light {
+            Light::Distant {
+                direction,
+                color,
+                intensity,
+            } => {
+                let i = intensity as f64;
+                arrive(
+                    D3::of(direction).unit().mul(-1.0),
+                    [color.r as f64 * i, color.g as f64 * i, color.b as f64 * i],
+                    f64::INFINITY,
+                )
+            }
+            Light::Point {
+                position,
+                color,
+                intensity,
+                radius,
+            } if radius > 0.0 => {
+                let power = [color.r, color.g, color.b].map(|c| c as f64 * intensity as f64);
+                let light = SphereLight {
+                    center: D3::of(position),
+                    radius: radius as f64,
+                    power,
+                };
+                light.integrate(p, shadow_origin, strata, &mut arrive)
+            }
+            Light::Point {
+                position,
+                color,
+                intensity,
+                ..
+            } => {
+                let lv = D3::of(position).sub(p);
+                let dist = lv.len();
+                let scale = intensity as f64 / (4.0 * core::f64::consts::PI * dist * dist);
+                let a = |c: f32| {
+                    let v = c as f64 * scale;
+                    if v.is_nan() || v > ARRIVING_CAP {
+                        ARRIVING_CAP
+                    } else {
+                        v
+                    }
+                };
+                arrive(lv.unit(), [a(color.r), a(color.g), a(color.b)], dist)
+            }
+        };
+        if blocked && li < 32 {
+            shadowed |= 1 << li;
         }
     }
     let albedo = [m.albedo.r as f64, m.albedo.g as f64, m.albedo.b as f64];

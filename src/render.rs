@@ -86,6 +86,13 @@ pub enum RenderError {
         /// The sphere.
         item: Item,
     },
+    /// A point light has a radius (a sphere light): the float and fixed paths render point
+    /// lights of radius 0 only; the `f64` [`reference`](crate::reference) renders sphere
+    /// lights.
+    SphereLight {
+        /// The light's index.
+        light: usize,
+    },
 }
 
 impl fmt::Display for RenderError {
@@ -123,6 +130,10 @@ impl fmt::Display for RenderError {
                 f,
                 "{item}: `model` has no fixed-point implementation (oren-nayar and ggx render \
                  on the float paths)"
+            ),
+            RenderError::SphereLight { light } => write!(
+                f,
+                "light {light}: `radius` is not 0, and this path renders point lights of radius 0 only"
             ),
         }
     }

@@ -20,6 +20,7 @@
 //! | radius | [`MIN_RADIUS`] `≤ r ≤` [`MAX_COORDINATE`] |
 //! | colours, albedo, `kd`, `ks` | `0 ≤ v ≤` [`MAX_VALUE`] |
 //! | light intensity | `0 ≤ i ≤` [`MAX_INTENSITY`] |
+//! | point light radius | `0 ≤ R ≤` [`MAX_COORDINATE`], the light's sphere clear of every scene sphere |
 //! | shininess `n` (every lobe) | `0 < n ≤` [`MAX_SHININESS`] |
 //! | lobe weights (`ks`, `lobes[k].weight`) | `0 ≤ w ≤` [`MAX_VALUE`] |
 //! | index of refraction `ior` | `1 < ior ≤` [`MAX_VALUE`]: at 1 there is no interface to reflect, and below 1 Schlick's form would need total internal reflection |
@@ -390,6 +391,7 @@ pub enum Light {
     ///     position: Vec3::new(0.0, d, 0.0), // d above a sphere at the origin
     ///     color: LinearRgb::new(1.0, 1.0, 1.0),
     ///     intensity,
+    ///     radius: 0.0,
     /// };
     /// # let _ = lamp;
     /// ```
@@ -401,6 +403,12 @@ pub enum Light {
         /// Power: what arrives at distance `r` is `intensity / (4π r²)`, so for a wanted
         /// brightness `E` at distance `d`, `intensity = 4π·d²·E` (see [`Light::Point`]).
         intensity: f32,
+        /// The radius of the light's sphere: 0 is a point. A sphere light emits the same
+        /// power evenly from its surface (radiance `colour·intensity/(4π²·radius²)`), so
+        /// wherever it is wholly above a surface's horizon and unblocked, the surface gets
+        /// what the point at its centre would give; its highlights are wider and its shadows
+        /// soft. In `[0, MAX_COORDINATE]`, and the sphere may not overlap a scene sphere.
+        radius: f32,
     },
 }
 
@@ -450,6 +458,9 @@ pub enum Problem {
     UpParallelToView,
     /// The field of view is not inside `(0°, 180°)`.
     FieldOfViewOutOfRange,
+    /// A sphere light overlaps a scene sphere (reported on the light's `radius`, whichever
+    /// of the two was added last): every shaded point must see the light from outside.
+    LightOverlapsSphere,
 }
 
 /// Why a scene was refused: the item, the field (named as in the scene file) and the problem.
@@ -510,6 +521,7 @@ impl fmt::Display for Problem {
             Problem::LookAtEqualsPosition => "must differ from the camera position",
             Problem::UpParallelToView => "must not be parallel to the view direction",
             Problem::FieldOfViewOutOfRange => "must be between 0 and 180 degrees, exclusive",
+            Problem::LightOverlapsSphere => "makes the light's sphere overlap a scene sphere",
         })
     }
 }
@@ -779,14 +791,44 @@ impl Light {
                 position,
                 color,
                 intensity,
+                radius,
             } => {
                 c.point("position", position)?;
+                c.non_negative("radius", &[radius], MAX_COORDINATE)?;
                 (color, intensity)
             }
         };
         c.color("color", color)?;
         c.non_negative("intensity", &[intensity], MAX_INTENSITY)
     }
+}
+
+/// Whether light `index` (a sphere light) lies clear of `sphere`: the two spheres do not
+/// overlap (touching is allowed).
+fn light_clear_of(index: usize, light: &Light, sphere: &Sphere) -> Result<(), SceneError> {
+    let Light::Point {
+        position, radius, ..
+    } = *light
+    else {
+        return Ok(());
+    };
+    if radius <= 0.0 {
+        return Ok(());
+    }
+    let d = [
+        position.x as f64 - sphere.center.x as f64,
+        position.y as f64 - sphere.center.y as f64,
+        position.z as f64 - sphere.center.z as f64,
+    ];
+    let reach = radius as f64 + sphere.radius as f64;
+    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < reach * reach {
+        return Err(SceneError::Invalid {
+            item: Item::Light(index),
+            field: "radius",
+            problem: Problem::LightOverlapsSphere,
+        });
+    }
+    Ok(())
 }
 
 /// A validated scene holding up to `S` spheres and `L` lights.
@@ -845,6 +887,9 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     pub fn add_sphere(&mut self, sphere: Sphere) -> Result<usize, SceneError> {
         let index = self.spheres.len();
         sphere.check(Item::Sphere(index))?;
+        for (k, light) in self.lights.iter().enumerate() {
+            light_clear_of(k, light, &sphere)?;
+        }
         self.spheres
             .push(sphere)
             .map_err(|_| SceneError::CapacityExceeded {
@@ -858,6 +903,9 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     pub fn add_light(&mut self, light: Light) -> Result<usize, SceneError> {
         let index = self.lights.len();
         light.check(Item::Light(index))?;
+        for sphere in &self.spheres {
+            light_clear_of(index, &light, sphere)?;
+        }
         self.lights
             .push(light)
             .map_err(|_| SceneError::CapacityExceeded {

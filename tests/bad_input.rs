@@ -46,6 +46,7 @@ fn point(position: Vec3) -> Light {
         position,
         color: LinearRgb::new(1.0, 1.0, 1.0),
         intensity: 50.0,
+        radius: 0.0,
     }
 }
 
@@ -382,6 +383,7 @@ fn nan_or_inf_in_any_light_field_is_refused() {
                 position: Vec3::new(0.0, 3.0, 0.0),
                 color,
                 intensity: 1.0,
+                radius: 0.0,
             };
             assert_eq!(light_error(distant), want("color"));
             assert_eq!(light_error(point), want("color"));
@@ -395,6 +397,7 @@ fn nan_or_inf_in_any_light_field_is_refused() {
             position: Vec3::new(0.0, 3.0, 0.0),
             color: white,
             intensity: bad,
+            radius: 0.0,
         };
         assert_eq!(light_error(distant), want("intensity"));
         assert_eq!(light_error(point), want("intensity"));
@@ -682,6 +685,7 @@ fn brightest_point_light_on_a_surface_saturates_without_overflow() {
             position: Vec3::new(0.0, 0.0, 1.000_000_1),
             color: LinearRgb::new(MAX_VALUE, MAX_VALUE, MAX_VALUE),
             intensity: MAX_INTENSITY,
+            radius: 0.0,
         })
         .unwrap();
     }
@@ -1406,6 +1410,7 @@ fn point_light_a_hair_from_the_hit_points_with_a_black_channel_is_not_nan() {
         position: Vec3::new(0.0, 0.0, 1.0),
         color: LinearRgb::new(0.0, 40.0, 0.1),
         intensity: 0.2,
+        radius: 0.0,
     })
     .unwrap();
     let rows = rows_checked(&s, 36, 58982, &[39322, 29491], Fixed::Renders);

@@ -209,6 +209,7 @@ fn extreme_scene() -> impl Strategy<Value = Option<Extreme>> {
                         position,
                         color: LinearRgb::new(1.0, 0.8, 0.6),
                         intensity,
+                        radius: 0.0,
                     }
                 };
                 scene.add_light(light).ok()?;

@@ -84,6 +84,7 @@ fn spans_change_no_pixel_with_spheres_near_and_around_the_camera() {
             position: Vec3::new(0.0, 3.0, 3.0),
             color: LinearRgb::new(1.0, 1.0, 1.0),
             intensity: 200.0,
+            radius: 0.0,
         })
         .unwrap();
     for (w, h) in [(160, 120), (97, 203)] {
@@ -392,6 +393,7 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
         position: Vec3::new(0.0, 0.0, 1.0),
         color: LinearRgb::new(1.0, 1.0, 1.0),
         intensity: 1.0e12,
+        radius: 0.0,
     })
     .unwrap();
     assert_eq!(refused(&s, 8, 8), None);
@@ -431,10 +433,12 @@ fn scaled<const S: usize, const L: usize>(scene: &Scene<S, L>, j: i32) -> Scene<
                 position,
                 color,
                 intensity,
+                radius,
             } => Light::Point {
                 position: position.scale(f),
                 color,
                 intensity: intensity * f * f,
+                radius: radius * f,
             },
             distant => distant,
         })

@@ -95,6 +95,7 @@ fn a_point_light_delivers_colour_times_intensity_over_four_pi_r_squared() {
                 position: Vec3::new(0.0, 0.0, light_z),
                 color: LinearRgb::new(color[0], color[1], color[2]),
                 intensity,
+                radius: 0.0,
             })
             .unwrap();
         let r = f64::from(light_z) - 1.0;

@@ -164,7 +164,8 @@ fn non_finite_numbers_are_refused_in_every_field() {
             light_error(Light::Point {
                 position: Vec3::new(0.0, bad, 0.0),
                 color: c1,
-                intensity: 1.0
+                intensity: 1.0,
+                radius: 0.0,
             }),
             invalid(l0, "position", Problem::NotFinite)
         );
@@ -172,11 +173,90 @@ fn non_finite_numbers_are_refused_in_every_field() {
             light_error(Light::Point {
                 position: Vec3::new(0.0, 3.0, 0.0),
                 color: c1,
-                intensity: bad
+                intensity: bad,
+                radius: 0.0,
             }),
             invalid(l0, "intensity", Problem::NotFinite)
         );
+        assert_eq!(
+            light_error(Light::Point {
+                position: Vec3::new(0.0, 3.0, 0.0),
+                color: c1,
+                intensity: 1.0,
+                radius: bad,
+            }),
+            invalid(l0, "radius", Problem::NotFinite)
+        );
     }
+}
+
+fn sphere_light(position: Vec3, radius: f32) -> Light {
+    Light::Point {
+        position,
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 1.0,
+        radius,
+    }
+}
+
+#[test]
+fn a_light_radius_must_not_be_negative_or_beyond_the_coordinates() {
+    let l0 = Item::Light(0);
+    let at = Vec3::new(0.0, 3.0, 0.0);
+    assert_eq!(
+        light_error(sphere_light(at, -0.5)),
+        invalid(l0, "radius", Problem::Negative)
+    );
+    assert_eq!(
+        light_error(sphere_light(at, 2.0e6)),
+        invalid(l0, "radius", Problem::TooLarge)
+    );
+    // The radius is checked after the position, before the colour.
+    let mut both = sphere_light(Vec3::new(f32::NAN, 0.0, 0.0), -1.0);
+    assert_eq!(
+        light_error(both),
+        invalid(l0, "position", Problem::NotFinite)
+    );
+    if let Light::Point {
+        position, color, ..
+    } = &mut both
+    {
+        *position = at;
+        *color = LinearRgb::new(-1.0, 0.0, 0.0);
+    }
+    assert_eq!(light_error(both), invalid(l0, "radius", Problem::Negative));
+}
+
+#[test]
+fn a_sphere_light_may_not_overlap_a_sphere_whichever_comes_first() {
+    let overlap = invalid(Item::Light(0), "radius", Problem::LightOverlapsSphere);
+    // The sphere first, then a light reaching into it: refused, the scene unchanged.
+    let mut sc = scene();
+    sc.add_sphere(sphere()).unwrap();
+    assert_eq!(
+        sc.add_light(sphere_light(Vec3::new(0.0, 3.0, 0.0), 2.5)),
+        Err(overlap)
+    );
+    assert!(sc.lights().is_empty());
+    // Touching is allowed, and so is a point light inside nothing.
+    sc.add_light(sphere_light(Vec3::new(0.0, 3.0, 0.0), 2.0))
+        .unwrap();
+    // The light first, then a sphere reaching into it: refused, naming the light.
+    let mut sc = scene();
+    sc.add_light(sphere_light(Vec3::new(0.0, 3.0, 0.0), 2.5))
+        .unwrap();
+    assert_eq!(sc.add_sphere(sphere()), Err(overlap));
+    assert!(sc.spheres().is_empty());
+    // A point light (radius 0) may even sit inside a sphere, as before.
+    let mut sc = scene();
+    sc.add_sphere(sphere()).unwrap();
+    sc.add_light(sphere_light(Vec3::new(0.0, 0.5, 0.0), 0.0))
+        .unwrap();
+    let message = overlap.to_string();
+    assert!(
+        message.contains("light 0") && message.contains("radius"),
+        "{message}"
+    );
 }
 
 #[test]
@@ -245,6 +325,7 @@ fn light_colour_and_intensity_must_not_be_negative() {
         position: Vec3::new(0.0, 3.0, 0.0),
         color: LinearRgb::new(-1.0, 1.0, 1.0),
         intensity: 1.0,
+        radius: 0.0,
     });
     assert_eq!(err, invalid(Item::Light(0), "color", Problem::Negative));
 }

@@ -130,6 +130,7 @@ fn conditioned(scene: &FuzzScene) -> bool {
             position,
             color,
             intensity,
+            ..
         } => scene.spheres().iter().all(|s| {
             // Arriving light at the sphere's nearest point, with the light clear of it.
             let d = position - s.center;

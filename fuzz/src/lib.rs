@@ -405,20 +405,27 @@ mod model {
 
     /// The first refused field of a light.
     pub fn light(l: &Light) -> Option<(&'static str, Problem)> {
-        let (first, color, intensity) = match *l {
+        let (first, radius, color, intensity) = match *l {
             Light::Distant {
                 direction: d,
                 color,
                 intensity,
-            } => (("direction", direction(d)), color, intensity),
+            } => (("direction", direction(d)), None, color, intensity),
             Light::Point {
                 position,
                 color,
                 intensity,
-            } => (("position", point(position)), color, intensity),
+                radius,
+            } => (
+                ("position", point(position)),
+                non_negative(&[radius], MAX_COORDINATE),
+                color,
+                intensity,
+            ),
         };
         let checks = [
             first,
+            ("radius", radius),
             ("color", self::color(color)),
             ("intensity", non_negative(&[intensity], MAX_INTENSITY)),
         ];
@@ -542,6 +549,7 @@ pub fn build_scene(input: &SceneInput) -> Option<FuzzScene> {
                 position: position.vec(),
                 color: color.rgb(),
                 intensity: intensity.value(),
+                radius: 0.0,
             },
         };
         let before = scene.lights().len();

@@ -7,7 +7,7 @@
 //! |---|---|
 //! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear, optional `antialias = true` (analytic edges; float paths) |
 //! | `[camera]` | `position`, `look_at`, `up` = `[x, y, z]`, `vfov` (degrees) |
-//! | `[[light]]` | `type = "distant"` with `direction`, or `type = "point"` with `position`; both with `color`, `intensity` |
+//! | `[[light]]` | `type = "distant"` with `direction`, or `type = "point"` with `position` and optionally `radius` (0: a point; more: a sphere light); both with `color`, `intensity` |
 //! | `[[sphere]]` | `center`, `radius`, `albedo`, `kd`, `ks`, `shininess`, optional `model` (below) |
 //!
 //! Materials (`scenes/materials.toml` shows each):
@@ -158,6 +158,7 @@ struct RawLight {
     position: Option<[f64; 3]>,
     color: [f64; 3],
     intensity: f64,
+    radius: Option<f64>,
 }
 
 #[derive(Deserialize, Clone, Copy, Default, PartialEq, Eq)]
@@ -385,8 +386,13 @@ fn build(raw: &RawFile, place: &Placer<'_>) -> Result<SceneFile, SceneFileError>
 }
 
 /// Asks the core whether it renders this size, so the file and the renderer agree on limits.
+/// A sphere light is not a size problem: the prepare checks the size before the lights, and
+/// the paths' refusal of sphere lights comes when a path is asked to render.
 pub fn check_size(scene: &FileScene, width: u32, height: u32) -> Result<(), RenderError> {
-    Prepared::<Scalar, MAX_SPHERES, MAX_LIGHTS>::new(scene, width, height).map(|_| ())
+    match Prepared::<Scalar, MAX_SPHERES, MAX_LIGHTS>::new(scene, width, height) {
+        Ok(_) | Err(RenderError::SphereLight { .. }) => Ok(()),
+        Err(e) => Err(e),
+    }
 }
 
 /// A sphere's material from its keys, checking that they fit its `model` (the numbers are
@@ -555,6 +561,12 @@ fn light(l: &RawLight, i: usize, place: &Placer<'_>) -> Result<Light, SceneFileE
             format!("missing key `{needs}` (a {kind} light needs it)"),
         ));
     };
+    if let (LightType::Distant, Some(_)) = (l.kind, l.radius) {
+        return Err(place.error(
+            &format!("light[{i}].radius"),
+            "a distant light has no `radius` (only a point light takes one)".to_string(),
+        ));
+    }
     let (color, intensity) = (rgb(l.color), narrow(l.intensity));
     Ok(match l.kind {
         LightType::Distant => Light::Distant {
@@ -566,6 +578,7 @@ fn light(l: &RawLight, i: usize, place: &Placer<'_>) -> Result<Light, SceneFileE
             position: vec3(v),
             color,
             intensity,
+            radius: l.radius.map_or(0.0, narrow),
         },
     })
 }

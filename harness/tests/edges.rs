@@ -157,6 +157,7 @@ fn overlapping_spheres(seed: u64) -> FileScene {
             position,
             color: LinearRgb::new(1.0, 0.9, 0.8),
             intensity: 4.0 * core::f32::consts::PI * position.dot(position) * 0.5,
+            radius: 0.0,
         })
         .unwrap();
     scene

@@ -325,3 +325,36 @@ fn columns_count_characters_not_bytes() {
     // `vfov = "ééé" ` is 13 characters (16 bytes): the stray `x` is column 14.
     assert_eq!((e.line, e.column), (line_of(&text, "vfov"), 14), "{e}");
 }
+
+#[test]
+fn a_point_light_takes_a_radius_and_a_distant_light_refuses_one() {
+    let distant = "type = \"distant\"\ndirection = [-0.4347962, -0.8416416, 0.3202994]";
+    let point = |radius: &str| {
+        edited(
+            distant,
+            &format!("type = \"point\"\nposition = [1.0, 20.0, 3.0]\n{radius}"),
+        )
+    };
+    let file = parse_scene(&point("radius = 0.5")).unwrap();
+    assert!(matches!(
+        file.scene.lights()[0],
+        shadeline::Light::Point { radius, .. } if radius == 0.5
+    ));
+    // Without the key, a point.
+    let file = parse_scene(&point("")).unwrap();
+    assert!(matches!(
+        file.scene.lights()[0],
+        shadeline::Light::Point { radius, .. } if radius == 0.0
+    ));
+    let text = point("radius = -1.0");
+    assert_error(&text, "radius = -1.0", Some("light[0].radius"), "negative");
+    let text = point("radius = 1000.0");
+    assert_error(&text, "radius = 1000.0", Some("light[0].radius"), "overlap");
+    let text = edited(distant, &format!("{distant}\nradius = 0.5"));
+    assert_error(
+        &text,
+        "radius = 0.5",
+        Some("light[0].radius"),
+        "a distant light has no `radius`",
+    );
+}

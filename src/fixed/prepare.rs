@@ -60,28 +60,29 @@ pub(crate) struct NarrowView {
     pub step_y: V3<i32>,
 }
 
-/// A sphere's narrow constants.
+/// A sphere's narrow constants, the per-pixel ones first (see [`FixedSphere`]).
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct NarrowSphere {
-    /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
-    pub left: u32,
-    /// The high word of the held `w`, shifted right by this, is `w16` (`|w16| < 2¹⁶` on a hit).
-    pub right: u32,
-    /// The radius, raw I16F16.
-    pub radius: u32,
-    /// `2^(L + 15)/r` with `L` the bit length of the raw radius: in `(2¹⁵, 2¹⁶]`.
-    pub gain: u32,
-    /// `w` and `b` per pixel step (`oc × 2·step_x`, held shifted like `w`; `oc·2·step_x`).
-    pub dw: V3<i64>,
-    pub db: i64,
+    /// Whether the narrow lobe is within a quarter level wherever it is not 0.
+    pub lobe_everywhere: bool,
     /// `1 − r²/(r + ε)²` in Q30: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
     pub shadow_limit: u32,
     /// `h` (Q31) from which the lobe is 0.
     pub cutoff: u32,
-    /// Whether the narrow lobe is within a quarter level wherever it is not 0.
-    pub lobe_everywhere: bool,
+    /// The high word of the held `w`, shifted right by this, is `w16` (`|w16| < 2¹⁶` on a hit).
+    pub right: u32,
+    /// `2^(L + 15)/r` with `L` the bit length of the raw radius: in `(2¹⁵, 2¹⁶]`.
+    pub gain: u32,
+    /// The radius, raw I16F16.
+    pub radius: u32,
     /// The first caster the 32-bit filter covers, if any.
     pub fast: Option<FastCaster>,
+    /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
+    pub left: u32,
+    /// `w` and `b` per pixel step (`oc × 2·step_x`, held shifted like `w`; `oc·2·step_x`).
+    pub dw: V3<i64>,
+    pub db: i64,
 }
 
 /// A caster of a sphere, for the 32-bit filter in front of the narrow kernel's exact caster
@@ -109,34 +110,39 @@ pub(crate) struct FastCaster {
 }
 
 /// A sphere's per-frame constants, in scaled units.
+///
+/// `repr(C)` with the narrow kernel's per-pixel fields first: ARMv6-M's loads reach only
+/// 124 bytes past a base register (62 for halfwords, 31 for bytes), and fields beyond that
+/// cost the row loop an address computation each, which it keeps in stack slots.
 #[derive(Clone, Copy, Debug)]
+#[repr(C)]
 pub(crate) struct FixedSphere {
-    pub center: V3<Len>,
-    /// `eye − centre`: the primary rays' origin offset.
-    pub eye_offset: V3<Len>,
-    pub radius_sq: I32F32,
-    /// `1/r` of the raw radius bits, as [`inv_sqrt`] returns it: `y·2^-shift`.
-    pub inv_radius: (u32, u32),
+    /// The narrow kernel's constants, if the frame uses it.
+    pub narrow: Option<NarrowSphere>,
     pub kd_albedo: V3<U16F16>,
     pub ks: U16F16,
     pub shininess: Exact,
     pub blinn: bool,
     /// A normalized model (or Lambert): the kernel's `normalized` terms, not the classic ones.
     pub normalized: bool,
+    /// Schlick's factor applies.
+    pub schlick: bool,
+    /// The diffuse lobe is multiplied by `1 − F`.
+    pub diffuse_loss: bool,
+    pub center: V3<Len>,
+    /// `eye − centre`: the primary rays' origin offset.
+    pub eye_offset: V3<Len>,
+    pub radius_sq: I32F32,
+    /// `1/r` of the raw radius bits, as [`inv_sqrt`] returns it: `y·2^-shift`.
+    pub inv_radius: (u32, u32),
     /// Normalized models: each lobe's weight times its normalization factor, exact.
     pub weight: [Exact; LOBES],
     /// Exponents of lobes 1 and 2.
     pub more_shininess: [Exact; MORE_LOBES],
     /// `F₀` per channel, U2F30 (`1 << 30` is 1).
     pub f0: [u32; 3],
-    /// Schlick's factor applies.
-    pub schlick: bool,
-    /// The diffuse lobe is multiplied by `1 − F`.
-    pub diffuse_loss: bool,
     /// The screen rectangle, or `None` if the sphere is off screen.
     pub bounds: Option<Bounds>,
-    /// The narrow kernel's constants, if the frame uses it.
-    pub narrow: Option<NarrowSphere>,
 }
 
 /// A light's per-frame constants.
@@ -426,7 +432,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     position,
                     color,
                     intensity,
+                    radius,
                 } => {
+                    if radius > 0.0 {
+                        return Err(RenderError::SphereLight { light: i });
+                    }
                     let power = Vec3::new(color.r, color.g, color.b)
                         .scale(intensity / (4.0 * core::f32::consts::PI))
                         .scale(pow2(2 * k));

@@ -192,7 +192,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             debug_assert!(pushed.is_ok(), "more spheres than the scene holds");
         }
         let mut lights = heapless::Vec::new();
-        for l in scene.lights() {
+        for (i, l) in scene.lights().iter().enumerate() {
             let p = match *l {
                 Light::Distant {
                     direction,
@@ -211,11 +211,17 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     position,
                     color,
                     intensity,
-                } => PreparedLight::Point {
-                    position,
-                    power: Vec3::new(color.r, color.g, color.b)
-                        .scale(intensity / (4.0 * core::f32::consts::PI)),
-                },
+                    radius,
+                } => {
+                    if radius > 0.0 {
+                        return Err(RenderError::SphereLight { light: i });
+                    }
+                    PreparedLight::Point {
+                        position,
+                        power: Vec3::new(color.r, color.g, color.b)
+                            .scale(intensity / (4.0 * core::f32::consts::PI)),
+                    }
+                }
             };
             // Same capacity as the scene: cannot fail.
             let pushed = lights.push(p);

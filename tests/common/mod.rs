@@ -67,6 +67,7 @@ fn light() -> impl Strategy<Value = Light> {
                 position,
                 color,
                 intensity: 4.0 * core::f32::consts::PI * d2 * k,
+                radius: 0.0,
             }
         }),
     ]
@@ -254,11 +255,13 @@ pub fn point_lights_blinn_phong() -> Result<Scene<4, 4>, SceneError> {
         position: Vec3::new(-3.0, 5.0, 4.0),
         color: LinearRgb::new(1.0, 0.9, 0.7),
         intensity: 900.0,
+        radius: 0.0,
     })?;
     scene.add_light(Light::Point {
         position: Vec3::new(2.5, 1.2, 1.2),
         color: LinearRgb::new(0.4, 0.6, 1.0),
         intensity: 60.0,
+        radius: 0.0,
     })?;
     scene.add_light(Light::Distant {
         direction: Vec3::new(0.3, -1.0, -0.6),
