@@ -794,6 +794,7 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     }
 
     /// Adds a sphere after checking it; returns its index.
+    #[inline(never)]
     pub fn add_sphere(&mut self, sphere: Sphere) -> Result<usize, SceneError> {
         let index = self.spheres.len();
         sphere.check(Item::Sphere(index))?;
