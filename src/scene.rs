@@ -805,6 +805,7 @@ impl Light {
 
 /// Whether light `index` (a sphere light) lies clear of `sphere`: the two spheres do not
 /// overlap (touching is allowed).
+#[inline(never)]
 fn light_clear_of(index: usize, light: &Light, sphere: &Sphere) -> Result<(), SceneError> {
     let Light::Point {
         position, radius, ..
@@ -815,13 +816,11 @@ fn light_clear_of(index: usize, light: &Light, sphere: &Sphere) -> Result<(), Sc
     if radius <= 0.0 {
         return Ok(());
     }
-    let d = [
-        position.x as f64 - sphere.center.x as f64,
-        position.y as f64 - sphere.center.y as f64,
-        position.z as f64 - sphere.center.z as f64,
-    ];
-    let reach = radius as f64 + sphere.radius as f64;
-    if d[0] * d[0] + d[1] * d[1] + d[2] * d[2] < reach * reach {
+    // In `f32`: the squares stay below 1e13 (the coordinate range), and a tie within rounding
+    // may go either way.
+    let d = position - sphere.center;
+    let reach = radius + sphere.radius;
+    if d.dot(d) < reach * reach {
         return Err(SceneError::Invalid {
             item: Item::Light(index),
             field: "radius",
@@ -884,6 +883,7 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     }
 
     /// Adds a sphere after checking it; returns its index.
+    #[inline(never)]
     pub fn add_sphere(&mut self, sphere: Sphere) -> Result<usize, SceneError> {
         let index = self.spheres.len();
         sphere.check(Item::Sphere(index))?;
@@ -913,6 +913,13 @@ impl<const S: usize, const L: usize> Scene<S, L> {
                 capacity: L,
             })?;
         Ok(index)
+    }
+
+    /// The index of the first sphere light (a point light with a radius), if any.
+    pub fn sphere_light(&self) -> Option<usize> {
+        self.lights
+            .iter()
+            .position(|l| matches!(*l, Light::Point { radius, .. } if radius > 0.0))
     }
 
     /// The camera.

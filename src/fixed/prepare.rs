@@ -330,6 +330,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return Err(RenderError::BadSize { width, height });
         }
+        if let Some(light) = scene.sphere_light() {
+            return Err(RenderError::SphereLight { light });
+        }
         let camera = scene.camera();
         let (right, up, forward) = scene.camera_basis();
         let tan = libm::tanf(camera.vfov_degrees * (core::f32::consts::PI / 360.0));
@@ -432,11 +435,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     position,
                     color,
                     intensity,
-                    radius,
+                    ..
                 } => {
-                    if radius > 0.0 {
-                        return Err(RenderError::SphereLight { light: i });
-                    }
                     let power = Vec3::new(color.r, color.g, color.b)
                         .scale(intensity / (4.0 * core::f32::consts::PI))
                         .scale(pow2(2 * k));

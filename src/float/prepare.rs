@@ -159,6 +159,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return Err(RenderError::BadSize { width, height });
         }
+        // Refused up front, with the size: after this nothing fails, and the frame is built
+        // where it is returned.
+        if let Some(light) = scene.sphere_light() {
+            return Err(RenderError::SphereLight { light });
+        }
         let camera = scene.camera();
         let (right, up, forward) = scene.camera_basis();
         let half_fov = camera.vfov_degrees * (core::f32::consts::PI / 360.0);
@@ -192,7 +197,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             debug_assert!(pushed.is_ok(), "more spheres than the scene holds");
         }
         let mut lights = heapless::Vec::new();
-        for (i, l) in scene.lights().iter().enumerate() {
+        for l in scene.lights() {
             let p = match *l {
                 Light::Distant {
                     direction,
@@ -211,17 +216,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     position,
                     color,
                     intensity,
-                    radius,
-                } => {
-                    if radius > 0.0 {
-                        return Err(RenderError::SphereLight { light: i });
-                    }
-                    PreparedLight::Point {
-                        position,
-                        power: Vec3::new(color.r, color.g, color.b)
-                            .scale(intensity / (4.0 * core::f32::consts::PI)),
-                    }
-                }
+                    ..
+                } => PreparedLight::Point {
+                    position,
+                    power: Vec3::new(color.r, color.g, color.b)
+                        .scale(intensity / (4.0 * core::f32::consts::PI)),
+                },
             };
             // Same capacity as the scene: cannot fail.
             let pushed = lights.push(p);
