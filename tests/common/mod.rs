@@ -114,15 +114,14 @@ pub fn scene_strategy() -> impl Strategy<Value = TestScene> {
         )
 }
 
-/// `n` random scenes from a fixed seed: the same scenes on every run and every machine.
-pub fn random_scenes(n: usize, seed: u64) -> Vec<TestScene> {
+/// `n` values of `strategy` from a fixed seed: the same on every run and every machine.
+fn draw<T: Strategy>(strategy: T, n: usize, seed: u64) -> Vec<T::Value> {
     let config = Config {
         rng_seed: RngSeed::Fixed(seed),
         failure_persistence: None,
         ..Config::default()
     };
     let mut runner = TestRunner::new(config);
-    let strategy = scene_strategy();
     (0..n)
         .map(|_| {
             strategy
@@ -131,6 +130,11 @@ pub fn random_scenes(n: usize, seed: u64) -> Vec<TestScene> {
                 .current()
         })
         .collect()
+}
+
+/// `n` random scenes from a fixed seed: the same scenes on every run and every machine.
+pub fn random_scenes(n: usize, seed: u64) -> Vec<TestScene> {
+    draw(scene_strategy(), n, seed)
 }
 
 /// Renders a frame of any path into a pixel format.
@@ -396,38 +400,10 @@ pub fn rough_models_scene_strategy() -> impl Strategy<Value = TestScene> {
 
 /// `n` random scenes whose spheres are mostly Oren–Nayar and GGX, from a fixed seed.
 pub fn random_scenes_rough_models(n: usize, seed: u64) -> Vec<TestScene> {
-    let config = Config {
-        rng_seed: RngSeed::Fixed(seed),
-        failure_persistence: None,
-        ..Config::default()
-    };
-    let mut runner = TestRunner::new(config);
-    let strategy = rough_models_scene_strategy();
-    (0..n)
-        .map(|_| {
-            strategy
-                .new_tree(&mut runner)
-                .expect("strategy generates")
-                .current()
-        })
-        .collect()
+    draw(rough_models_scene_strategy(), n, seed)
 }
 
 /// `n` random scenes using every model, from a fixed seed.
 pub fn random_scenes_all_models(n: usize, seed: u64) -> Vec<TestScene> {
-    let config = Config {
-        rng_seed: RngSeed::Fixed(seed),
-        failure_persistence: None,
-        ..Config::default()
-    };
-    let mut runner = TestRunner::new(config);
-    let strategy = all_models_scene_strategy();
-    (0..n)
-        .map(|_| {
-            strategy
-                .new_tree(&mut runner)
-                .expect("strategy generates")
-                .current()
-        })
-        .collect()
+    draw(all_models_scene_strategy(), n, seed)
 }
