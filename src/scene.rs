@@ -739,7 +739,11 @@ impl Material {
                 }
             }
             Model::OrenNayar { roughness } => {
-                let (a, b) = crate::brdf::oren_nayar_ab(roughness);
+                // Oren–Nayar's `A` and `B` (the kernels' `brdf::oren_nayar_ab`, which this
+                // module, below `brdf`, does not call).
+                let s2 = roughness * roughness;
+                let a = 1.0 - 0.5 * s2 / (s2 + 0.33);
+                let b = 0.45 * s2 / (s2 + 0.09);
                 diffuse * (a + b / 2.0) <= 1.0
             }
             Model::Ggx(m) => match m.surface {
