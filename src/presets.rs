@@ -112,23 +112,7 @@ pub fn materials() -> Result<Scene, SceneError> {
 pub fn materials_with_capacity<const S: usize, const L: usize>() -> Result<Scene<S, L>, SceneError>
 {
     use crate::scene::{Lobe, Metal, Specular, Surface};
-    let camera = Camera {
-        position: Vec3::new(0.0, 0.0, 13.0),
-        look_at: Vec3::new(0.0, 0.0, 0.0),
-        up: Vec3::new(0.0, 1.0, 0.0),
-        vfov_degrees: 28.0,
-    };
-    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.03))?;
-    scene.add_light(Light::Distant {
-        direction: Vec3::new(0.45, -0.55, -0.7),
-        color: LinearRgb::new(1.0, 1.0, 1.0),
-        intensity: 2.5,
-    })?;
-    scene.add_light(Light::Distant {
-        direction: Vec3::new(-0.6, -0.2, -0.75),
-        color: LinearRgb::new(1.0, 0.85, 0.7),
-        intensity: 0.6,
-    })?;
+    let mut scene = gallery_stage(13.0)?;
     let dielectric = Specular::default();
     let metal = |m: Metal| Material {
         albedo: LinearRgb::new(0.0, 0.0, 0.0),
@@ -232,23 +216,7 @@ pub fn microfacets() -> Result<Scene, SceneError> {
 pub fn microfacets_with_capacity<const S: usize, const L: usize>() -> Result<Scene<S, L>, SceneError>
 {
     use crate::scene::{Metal, Microfacet, Specular, Surface};
-    let camera = Camera {
-        position: Vec3::new(0.0, 0.0, 17.0),
-        look_at: Vec3::new(0.0, 0.0, 0.0),
-        up: Vec3::new(0.0, 1.0, 0.0),
-        vfov_degrees: 28.0,
-    };
-    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.03))?;
-    scene.add_light(Light::Distant {
-        direction: Vec3::new(0.45, -0.55, -0.7),
-        color: LinearRgb::new(1.0, 1.0, 1.0),
-        intensity: 2.5,
-    })?;
-    scene.add_light(Light::Distant {
-        direction: Vec3::new(-0.6, -0.2, -0.75),
-        color: LinearRgb::new(1.0, 0.85, 0.7),
-        intensity: 0.6,
-    })?;
+    let mut scene = gallery_stage(17.0)?;
     let columns = [-6.25, -3.75, -1.25, 1.25, 3.75, 6.25];
     let red = LinearRgb::new(0.7, 0.1, 0.08);
     let black = LinearRgb::new(0.0, 0.0, 0.0);
@@ -348,5 +316,29 @@ pub fn full_moon() -> Result<Scene<2, 1>, SceneError> {
             },
         })?;
     }
+    Ok(scene)
+}
+
+/// The galleries' stage: a camera on the `z` axis at `distance`, looking at the origin with a
+/// 28° field of view, a near-black background, a white key light from the upper right and a
+/// warm fill from the left.
+fn gallery_stage<const S: usize, const L: usize>(distance: f32) -> Result<Scene<S, L>, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, distance),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 28.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.03))?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(0.45, -0.55, -0.7),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 2.5,
+    })?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(-0.6, -0.2, -0.75),
+        color: LinearRgb::new(1.0, 0.85, 0.7),
+        intensity: 0.6,
+    })?;
     Ok(scene)
 }
