@@ -61,30 +61,71 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         let runs = merge_runs::<S>(&spans);
         let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
+            let mut candidates = Candidates::<S>::new();
             // The lane count as a constant inside the closure, so that `chunks_mut`'s check
             // for a zero size folds away even where the closure is not inlined.
             for (chunk_index, chunk) in run_pixels.chunks_mut(W::Lane::LANES).enumerate() {
                 let x0 = (start + chunk_index * W::Lane::LANES) as u32;
                 let x1 = x0 + chunk.len() as u32;
-                let mut candidates: heapless::Vec<u16, S> = heapless::Vec::new();
-                for (k, span) in spans.iter().enumerate() {
-                    if let Some(s) = span {
-                        if s.start < x1 && x0 < s.end {
-                            // One span per sphere, so at most S: cannot fail.
-                            let pushed = candidates.push(k as u16);
-                            debug_assert!(pushed.is_ok(), "more candidates than spheres");
-                        }
-                    }
-                }
+                let candidates = candidates.overlapping(&spans, x0, x1);
                 if candidates.is_empty() {
                     background.fill(chunk, x0 as usize);
                     continue;
                 }
-                let packet = self.shade(&row, x0, &candidates, P::NEEDS_HITS);
+                let packet = self.shade(&row, x0, candidates, P::NEEDS_HITS);
                 store_packet(chunk, &packet, encoding, x0, y);
             }
         });
         Ok(())
+    }
+}
+
+/// The spheres whose spans overlap a packet's pixels, in scene order, kept from one packet
+/// to the next while no span starts or ends between them: a run's packets walk left to
+/// right, and the list changes only at the spans' ends, a few times a row, while the scalar
+/// path's packets are single pixels. Any list holding every sphere whose span touches the
+/// packet gives the same bits; this one holds exactly those.
+struct Candidates<const S: usize> {
+    /// The spheres of the last packet.
+    list: heapless::Vec<u16, S>,
+    /// The list holds for a later packet `x0..x1` while `x1 <= joins`: the nearest start of
+    /// a span to the right of the last packet.
+    joins: u32,
+    /// … and while `x0 < leaves`: the nearest end of a listed span.
+    leaves: u32,
+}
+
+impl<const S: usize> Candidates<S> {
+    /// An empty list that holds for no packet.
+    #[inline(always)]
+    fn new() -> Self {
+        Candidates {
+            list: heapless::Vec::new(),
+            joins: 0,
+            leaves: 0,
+        }
+    }
+
+    /// The spheres whose spans overlap `x0..x1`, for packets that walk left to right.
+    #[inline(always)]
+    fn overlapping(&mut self, spans: &[Option<Span>], x0: u32, x1: u32) -> &[u16] {
+        if x1 > self.joins || x0 >= self.leaves {
+            self.list.clear();
+            self.joins = u32::MAX;
+            self.leaves = u32::MAX;
+            for (k, span) in spans.iter().enumerate() {
+                let Some(s) = span else { continue };
+                if s.start < x1 && x0 < s.end {
+                    // One span per sphere, so at most S: cannot fail.
+                    let pushed = self.list.push(k as u16);
+                    debug_assert!(pushed.is_ok(), "more candidates than spheres");
+                    self.leaves = self.leaves.min(s.end);
+                } else if s.start >= x1 {
+                    self.joins = self.joins.min(s.start);
+                }
+            }
+        }
+        &self.list
     }
 }
 
