@@ -133,7 +133,7 @@ mod vec3;
 
 pub use encoding::{Encoding, Transfer};
 pub use fixed::PreparedFixed;
-pub use float::{FloatPath, Prepared, Scalar, Simd4, Simd8};
+pub use float::{FloatPath, Libm, Prepared, Scalar, ScalarWith, Simd4, Simd8, SquareRoot};
 pub use pixel::{
     Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
 };

@@ -63,6 +63,12 @@ fn assert_all_paths_identical<const S: usize, const L: usize>(
         &want_hits,
         &format!("{what}: scalar, spans true"),
     );
+    check(
+        &Prepared::<ScalarWith<HostSqrt>, S, L>::new(scene, w, h).unwrap(),
+        &want_color,
+        &want_hits,
+        &format!("{what}: scalar with the host's square root, spans true"),
+    );
     for spans in [false, true] {
         let label = |p: &str| format!("{what}: {p}, spans {spans}");
         check(
@@ -82,6 +88,42 @@ fn assert_all_paths_identical<const S: usize, const L: usize>(
             &label("simd8"),
         );
     }
+}
+
+/// The host's `f32::sqrt`: the hardware's correctly rounded square root (`sqrtss`, NEON's
+/// `fsqrt`, wasm's `f32.sqrt`), as a firmware supplies `VSQRT.F32`.
+struct HostSqrt;
+impl SquareRoot for HostSqrt {
+    fn sqrt(x: f32) -> f32 {
+        x.sqrt()
+    }
+}
+
+/// A square root one ulp too large: not correctly rounded.
+struct OneUlpHigh;
+impl SquareRoot for OneUlpHigh {
+    fn sqrt(x: f32) -> f32 {
+        f32::from_bits(x.sqrt().to_bits() + 1)
+    }
+}
+
+#[test]
+fn scalar_with_takes_every_square_root_from_its_parameter() {
+    // The square roots of `ScalarWith<Q>` are `Q`'s: one ulp off in each changes the frame
+    // (while `HostSqrt` gives `Scalar`'s bits, in `assert_all_paths_identical`).
+    let scene = exponent_series().unwrap();
+    let (w, h) = EXPONENT_SERIES_SIZE;
+    let exact = bits(&frame::<LinearRgb, _>(
+        &Prepared::<ScalarWith<HostSqrt>>::new(&scene, w, h).unwrap(),
+    ));
+    let off = bits(&frame::<LinearRgb, _>(
+        &Prepared::<ScalarWith<OneUlpHigh>>::new(&scene, w, h).unwrap(),
+    ));
+    let differ = exact.iter().zip(&off).filter(|(a, b)| a != b).count();
+    assert!(
+        differ > 1000,
+        "only {differ} pixels changed with a square root one ulp off"
+    );
 }
 
 #[test]

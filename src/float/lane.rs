@@ -21,6 +21,8 @@
 //! primitives in `math`, once, for every width.
 
 use crate::real::Real;
+use core::marker::PhantomData;
+use core::ops::{Add, Div, Mul, Neg, Sub};
 use wide::{f32x4, f32x8, i32x4, i32x8};
 
 /// A vector of `LANES` `f32` values processed together: one pixel per lane.
@@ -90,6 +92,155 @@ impl Lane for f32 {
         // `as` saturates, so any input gives a defined bit pattern.
         let biased = (k as i32).wrapping_add(EXP_BIAS) & 0xff;
         f32::from_bits((biased as u32) << 23)
+    }
+}
+
+/// A correctly rounded `f32` square root (IEEE 754 `squareRoot`, round to nearest even):
+/// what the scalar path [`ScalarWith<Q>`](super::ScalarWith) takes its square roots from.
+///
+/// The float kernel's other operations are single instructions on an FPU, but `core` has no
+/// `f32::sqrt` on stable Rust and the crate forbids `unsafe`, so the default scalar path
+/// ([`Scalar`](super::Scalar)) calls [`libm::sqrtf`], a routine of about fifty integer
+/// instructions on a Cortex-M4F. A firmware on a core with a square-root instruction (the
+/// M4F's `VSQRT.F32`, RISC-V's `fsqrt.s`) implements this trait with it (one line of inline
+/// assembly in the firmware) and renders with `Prepared<ScalarWith<ItsSqrt>>`.
+///
+/// The implementation must return the correctly rounded square root for every input,
+/// `−0.0` for `−0.0` and NaN for negative inputs: any IEEE 754 hardware square root does. The
+/// frames are then bit-identical to [`Scalar`](super::Scalar)'s and the SIMD paths'; an
+/// approximation would break that, and the one-level agreement with the `f64` reference.
+pub trait SquareRoot {
+    /// The correctly rounded square root of `x`.
+    fn sqrt(x: f32) -> f32;
+}
+
+/// [`libm::sqrtf`]: the square root of [`Scalar`](super::Scalar).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Libm;
+
+impl SquareRoot for Libm {
+    #[inline(always)]
+    fn sqrt(x: f32) -> f32 {
+        libm::sqrtf(x)
+    }
+}
+
+/// The lane of [`ScalarWith<Q>`](super::ScalarWith): one `f32` whose square root is `Q`'s.
+/// Every other operation is `f32`'s.
+#[doc(hidden)]
+#[repr(transparent)]
+pub struct Rooted<Q>(f32, PhantomData<Q>);
+
+impl<Q> Rooted<Q> {
+    #[inline(always)]
+    const fn new(v: f32) -> Self {
+        Rooted(v, PhantomData)
+    }
+}
+
+impl<Q> Clone for Rooted<Q> {
+    #[inline(always)]
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<Q> Copy for Rooted<Q> {}
+
+macro_rules! rooted_op {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl<Q> $tr for Rooted<Q> {
+            type Output = Self;
+            #[inline(always)]
+            fn $f(self, rhs: Self) -> Self {
+                Rooted::new(self.0 $op rhs.0)
+            }
+        }
+    };
+}
+rooted_op!(Add, add, +);
+rooted_op!(Sub, sub, -);
+rooted_op!(Mul, mul, *);
+rooted_op!(Div, div, /);
+
+impl<Q> Neg for Rooted<Q> {
+    type Output = Self;
+    #[inline(always)]
+    fn neg(self) -> Self {
+        Rooted::new(-self.0)
+    }
+}
+
+impl<Q: SquareRoot> Real for Rooted<Q> {
+    type Mask = bool;
+    #[inline(always)]
+    fn splat(v: f32) -> Self {
+        Rooted::new(v)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        Rooted::new(Q::sqrt(self.0))
+    }
+    #[inline(always)]
+    fn lt(self, rhs: Self) -> bool {
+        self.0 < rhs.0
+    }
+    #[inline(always)]
+    fn le(self, rhs: Self) -> bool {
+        self.0 <= rhs.0
+    }
+    #[inline(always)]
+    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+        if mask {
+            if_true
+        } else {
+            if_false
+        }
+    }
+    #[inline(always)]
+    fn and(a: bool, b: bool) -> bool {
+        a & b
+    }
+    #[inline(always)]
+    fn or(a: bool, b: bool) -> bool {
+        a | b
+    }
+    #[inline(always)]
+    fn and_not(a: bool, b: bool) -> bool {
+        a & !b
+    }
+    #[inline(always)]
+    fn any(mask: bool) -> bool {
+        mask
+    }
+}
+
+impl<Q: SquareRoot> Lane for Rooted<Q> {
+    const LANES: usize = 1;
+
+    #[inline(always)]
+    fn ramp(start: f32) -> Self {
+        Rooted::new(start)
+    }
+    #[inline(always)]
+    fn to_lanes(self) -> [f32; 8] {
+        self.0.to_lanes()
+    }
+    #[inline(always)]
+    fn trunc_lanes(self) -> [i32; 8] {
+        self.0.trunc_lanes()
+    }
+    #[inline(always)]
+    fn bitmask(mask: bool) -> u32 {
+        mask as u32
+    }
+    #[inline(always)]
+    fn split_exponent(self) -> (Self, Self) {
+        let (m, e) = self.0.split_exponent();
+        (Rooted::new(m), Rooted::new(e))
+    }
+    #[inline(always)]
+    fn pow2i(k: Self) -> Self {
+        Rooted::new(f32::pow2i(k.0))
     }
 }
 
@@ -186,5 +337,6 @@ mod tests {
         check_exact::<f32>();
         check_exact::<f32x4>();
         check_exact::<f32x8>();
+        check_exact::<Rooted<Libm>>();
     }
 }

@@ -30,5 +30,6 @@ mod row;
 mod spans;
 
 #[doc(hidden)]
-pub use lane::Lane;
-pub use prepare::{FloatPath, Prepared, Scalar, Simd4, Simd8};
+pub use lane::{Lane, Rooted};
+pub use lane::{Libm, SquareRoot};
+pub use prepare::{FloatPath, Prepared, Scalar, ScalarWith, Simd4, Simd8};

@@ -13,7 +13,7 @@
 //! operations are all exactly specified: see `lane`). It also holds the per-row constants
 //! ([`Row`]) that the spans and the kernel's `ray` stage share.
 
-use super::lane::Lane;
+use super::lane::{Lane, Rooted, SquareRoot};
 use crate::brdf::Params;
 use crate::pixel::LinearRgb;
 use crate::render::{RenderError, MAX_DIMENSION};
@@ -45,6 +45,53 @@ pub struct Simd8;
 impl FloatPath for Scalar {
     type Lane = f32;
 }
+/// The scalar float path with the square roots of `Q` (a [`SquareRoot`]): for a firmware
+/// on a core with a square-root instruction, such as a Cortex-M4F's `VSQRT.F32`. It renders
+/// the frames [`Scalar`] renders, bit for bit, when `Q` is correctly rounded.
+///
+/// ```
+/// use shadeline::{exponent_series, Prepared, Render, Rgb565, Scalar, ScalarWith, SquareRoot};
+///
+/// /// On a Cortex-M4F this would be one `vsqrt.f32` in inline assembly.
+/// struct Hardware;
+/// impl SquareRoot for Hardware {
+///     fn sqrt(x: f32) -> f32 {
+///         x.sqrt()
+///     }
+/// }
+///
+/// let scene = exponent_series()?;
+/// let mut a = [Rgb565::default(); 64];
+/// let mut b = [Rgb565::default(); 64];
+/// Prepared::<Scalar>::new(&scene, 64, 48)?.render_line(20, &mut a)?;
+/// Prepared::<ScalarWith<Hardware>>::new(&scene, 64, 48)?.render_line(20, &mut b)?;
+/// assert_eq!(a, b);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub struct ScalarWith<Q>(PhantomData<Q>);
+
+// By hand: derives would ask the same of `Q`, which is only a marker.
+impl<Q> Clone for ScalarWith<Q> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+impl<Q> Copy for ScalarWith<Q> {}
+impl<Q> Default for ScalarWith<Q> {
+    fn default() -> Self {
+        ScalarWith(PhantomData)
+    }
+}
+impl<Q> core::fmt::Debug for ScalarWith<Q> {
+    fn fmt(&self, f: &mut core::fmt::Formatter<'_>) -> core::fmt::Result {
+        f.write_str("ScalarWith")
+    }
+}
+
+impl<Q: SquareRoot> FloatPath for ScalarWith<Q> {
+    type Lane = Rooted<Q>;
+}
+
 impl FloatPath for Simd4 {
     type Lane = wide::f32x4;
 }

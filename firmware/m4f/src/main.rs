@@ -1,7 +1,11 @@
 //! shadeline on a Cortex-M4F (QEMU `mps2-an386`): the exponent series at 320×240 into a full
 //! RGB565 framebuffer in RAM (150 KiB of the board's 4 MiB), on the scalar `f32` path (hard
 //! float) and the fixed-point path, each reported with its CRC, instruction count and stack
-//! high-water mark over semihosting. Exits 0 only if every CRC matches. With the feature
+//! high-water mark over semihosting. Exits 0 only if every CRC matches.
+//!
+//! The scalar path takes its square roots from the FPU's `VSQRT.F32` ([`Vsqrt`], as an M4F
+//! firmware would: `scalar`); the same frame with `libm`'s integer square root, the crate's
+//! default [`Scalar`], is reported too (`scalar-libm`). With the feature
 //! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
 //! (`scalar-aa`); with the feature `microfacets`, it also renders the microfacet gallery
 //! (`scalar-microfacets`: GGX and Oren–Nayar spheres next to normalized Blinn-Phong and
@@ -19,7 +23,45 @@ use common::expected::{
 };
 use common::{Expected, Outcome, Session, Sink};
 use cortex_m_rt::entry;
-use shadeline::{exponent_series, Prepared, PreparedFixed, Rgb565, Scalar, Scene};
+use shadeline::{
+    exponent_series, Prepared, PreparedFixed, Rgb565, Scalar, ScalarWith, Scene, SquareRoot,
+};
+
+/// The Cortex-M4F's square-root instruction, `VSQRT.F32`: IEEE 754's correctly rounded
+/// square root, one instruction (14 cycles), where `libm::sqrtf` is an integer routine of
+/// about fifty. The FPU runs with the reset FPSCR (round to nearest, no flush to zero).
+struct Vsqrt;
+
+impl SquareRoot for Vsqrt {
+    #[inline(always)]
+    fn sqrt(x: f32) -> f32 {
+        let root: u32;
+        // Rust's `asm!` offers the FPU's registers only with the double-precision `vfp2`
+        // feature, which this single-precision FPU lacks: the value goes through `s0`, saved
+        // and restored in a core register, so no register the compiler uses changes.
+        // SAFETY: reads and writes only the registers named or restored; no memory, no
+        // stack, no flags. cortex-m-rt enables the FPU before `main` on this hard-float
+        // target.
+        unsafe {
+            core::arch::asm!(
+                ".fpu fpv4-sp-d16",
+                "vmov {saved}, s0",
+                "vmov s0, {x}",
+                "vsqrt.f32 s0, s0",
+                "vmov {root}, s0",
+                "vmov s0, {saved}",
+                x = in(reg) x.to_bits(),
+                root = lateout(reg) root,
+                saved = out(reg) _,
+                options(pure, nomem, nostack, preserves_flags),
+            )
+        };
+        f32::from_bits(root)
+    }
+}
+
+/// The scalar path as an M4F firmware builds it: hardware square roots.
+type M4fScalar = ScalarWith<Vsqrt>;
 
 /// mps2-an386's processor clock, which clocks SysTick: 25 MHz.
 const SYSCLK_HZ: u32 = 25_000_000;
@@ -32,14 +74,15 @@ fn main() -> ! {
     // framebuffer (zeroed with .bss), the scene and both prepared frames, each built in place.
     static mut FRAME: [Rgb565; PIXELS] = [Rgb565(0); PIXELS];
     static mut SCENE: Option<Scene> = None;
-    static mut SCALAR: Option<Prepared<Scalar>> = None;
+    static mut SCALAR: Option<Prepared<M4fScalar>> = None;
+    static mut SCALAR_LIBM: Option<Prepared<Scalar>> = None;
     static mut FIXED: PreparedFixed = PreparedFixed::EMPTY;
     #[cfg(feature = "antialias")]
-    static mut SCALAR_AA: Option<Prepared<Scalar>> = None;
+    static mut SCALAR_AA: Option<Prepared<M4fScalar>> = None;
     #[cfg(feature = "microfacets")]
     static mut MICRO_SCENE: Option<Scene> = None;
     #[cfg(feature = "microfacets")]
-    static mut MICRO: Option<Prepared<Scalar>> = None;
+    static mut MICRO: Option<Prepared<M4fScalar>> = None;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -53,7 +96,7 @@ fn main() -> ! {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
-    match session.build(SCALAR, || Prepared::<Scalar>::new(scene, WIDTH, HEIGHT)) {
+    match session.build(SCALAR, || Prepared::<M4fScalar>::new(scene, WIDTH, HEIGHT)) {
         (Some(path), prepare) => session.run(
             "scalar",
             path,
@@ -69,9 +112,27 @@ fn main() -> ! {
             session.fail();
         }
     }
+    match session.build(SCALAR_LIBM, || {
+        Prepared::<Scalar>::new(scene, WIDTH, HEIGHT)
+    }) {
+        (Some(path), prepare) => session.run(
+            "scalar-libm",
+            path,
+            Sink::Frame(FRAME),
+            prepare,
+            Expected {
+                crc: SCALAR_RGB565_CRC32,
+                covered: SCALAR_COVERED,
+            },
+        ),
+        (None, _) => {
+            session.note("shadeline-fw error=prepare-scalar-libm\n");
+            session.fail();
+        }
+    }
     #[cfg(feature = "antialias")]
     match session.build(SCALAR_AA, || {
-        Prepared::<Scalar>::new(scene, WIDTH, HEIGHT).map(|p| p.with_antialiasing(true))
+        Prepared::<M4fScalar>::new(scene, WIDTH, HEIGHT).map(|p| p.with_antialiasing(true))
     }) {
         (Some(path), prepare) => session.run(
             "scalar-aa",
@@ -94,7 +155,7 @@ fn main() -> ! {
             session.note("shadeline-fw error=scene-microfacets\n");
             exit(false)
         };
-        match session.build(MICRO, || Prepared::<Scalar>::new(micro, WIDTH, HEIGHT)) {
+        match session.build(MICRO, || Prepared::<M4fScalar>::new(micro, WIDTH, HEIGHT)) {
             (Some(path), prepare) => session.run(
                 "scalar-microfacets",
                 path,
