@@ -145,7 +145,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             return centre;
         };
         let (second, second_t) =
-            self.shade_along(first.direction, candidates, Some(first.filter), false);
+            self.shade_along(first.direction, candidates, Some(first.filter), false, true);
         // What lies behind the first edge: the second shading where the centre ray hits the
         // edge's sphere (it left that sphere out), the centre ray elsewhere.
         let inside = first.inside;
@@ -159,7 +159,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 edge.filter.also = sphere;
                 edge.coverage = first.coverage_left(&edge);
                 let (third, _) =
-                    self.shade_along(edge.direction, candidates, Some(edge.filter), false);
+                    self.shade_along(edge.direction, candidates, Some(edge.filter), false, true);
                 edge.blend(behind, third.color)
             }
             None => behind,

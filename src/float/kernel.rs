@@ -101,7 +101,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// `shade`: the packet of pixels `x0, x0 + 1, …` on the row `row`, testing primary rays
     /// against the spheres listed in `candidates` (in scene order). Shadow bits are recorded
     /// only if `record_hits`. With anti-aliasing on, lanes an outline crosses are then
-    /// blended with a second shading (`edges`).
+    /// blended with a second shading (`edges`). Colours are saturated at `f32::MAX` (see
+    /// [`combine`]) if `saturate`, or where anti-aliasing blends them; otherwise a channel
+    /// may be `+∞`, which is for callers that clamp it anyway (quantizing to levels).
     #[inline(always)]
     pub(crate) fn shade(
         &self,
@@ -109,9 +111,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         x0: u32,
         candidates: &[u16],
         record_hits: bool,
+        saturate: bool,
     ) -> Packet<W::Lane> {
         let (u, d) = self.ray(row, x0);
-        let (packet, t) = self.shade_along(d, candidates, None, record_hits);
+        #[cfg(feature = "antialias")]
+        let saturate = saturate || self.antialias;
+        let (packet, t) = self.shade_along(d, candidates, None, record_hits, saturate);
         #[cfg(feature = "antialias")]
         let packet = self.antialiased(packet, row, u, d, t, candidates);
         #[cfg(not(feature = "antialias"))]
@@ -121,7 +126,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 
     /// The stages from `hit` on, along the unit directions `d`; also returns the hit
     /// distance per lane (`f32::MAX` on a miss). `filter`, for the second shading of
-    /// anti-aliased edges, limits each lane to some spheres (see [`Filter`]).
+    /// anti-aliased edges, limits each lane to some spheres (see [`Filter`]). `saturate`: see
+    /// [`combine`].
     #[inline(always)]
     pub(crate) fn shade_along(
         &self,
@@ -129,6 +135,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         candidates: &[u16],
         filter: Option<Filter<W::Lane>>,
         record_hits: bool,
+        saturate: bool,
     ) -> (Packet<W::Lane>, W::Lane) {
         let mut hit = self.hit(d, candidates, filter);
         if filter.is_some() {
@@ -179,7 +186,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 &mut packet.shadowed,
             )
         };
-        packet.color = combine(&params, diffuse, specular, any_hit, background);
+        packet.color = combine(&params, diffuse, specular, any_hit, background, saturate);
         (packet, hit.t)
     }
 
@@ -470,8 +477,12 @@ fn specular<T: Lane, const NORMALIZED: bool>(
 /// `combine`: `kd·albedo ⊙ diffuse + ks·specular` on lanes that hit, the background elsewhere.
 ///
 /// `kd·albedo` (up to 1e12) times arriving light (up to 1e30 per light) can exceed
-/// `f32::MAX`: the sum saturates there, so the output is finite. Every term is ≥ 0 and
-/// finite, so the sum is never NaN, and `min` leaves every finite value's bits unchanged.
+/// `f32::MAX`: with `saturate`, the sum saturates there, so the output is finite. Every term
+/// is ≥ 0 and finite, so the sum is never NaN, and `min` leaves every finite value's bits
+/// unchanged. Without `saturate` an overflowing channel is `+∞`: the row driver asks for
+/// that only when it quantizes the colour to levels, where `clamp(+∞, 0, 1)` and
+/// `clamp(f32::MAX, 0, 1)` are both 1, so the stored pixel is the same and the three
+/// compare-and-selects per pixel are saved.
 #[inline(always)]
 fn combine<T: Lane>(
     params: &Params<T>,
@@ -479,6 +490,7 @@ fn combine<T: Lane>(
     specular: Vec3<T>,
     any_hit: T::Mask,
     background: Vec3<T>,
+    saturate: bool,
 ) -> Vec3<T> {
     let kd_albedo = params.kd_albedo;
     let shaded = Vec3::new(
@@ -486,8 +498,12 @@ fn combine<T: Lane>(
         kd_albedo.y * diffuse.y,
         kd_albedo.z * diffuse.z,
     ) + specular * params.ks;
-    let cap = T::splat(f32::MAX);
-    let shaded = Vec3::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap));
+    let shaded = if saturate {
+        let cap = T::splat(f32::MAX);
+        Vec3::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap))
+    } else {
+        shaded
+    };
     Vec3::select(any_hit, shaded, background)
 }
 

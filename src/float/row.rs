@@ -72,7 +72,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
                     background.fill(chunk, x0 as usize);
                     continue;
                 }
-                let packet = self.shade(&row, x0, candidates, P::NEEDS_HITS);
+                // Formats with levels clamp each channel to [0, 1]: `+∞` stores what `f32::MAX` does.
+                let packet = self.shade(&row, x0, candidates, P::NEEDS_HITS, P::LEVELS.is_none());
                 store_packet(chunk, &packet, encoding, x0, y);
             }
         });
