@@ -93,8 +93,9 @@ struct Incoming<T> {
     to_light: Vec3<T>,
     /// Arriving colour `I`.
     arriving: Vec3<T>,
-    /// Length of the shadow ray: the distance to a point light, `f32::MAX` for a distant one.
-    t_max: T,
+    /// Length of the shadow ray: the distance to a point light; `None` for a distant one,
+    /// whose shadow rays have no end.
+    t_max: Option<T>,
 }
 
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
@@ -417,7 +418,7 @@ fn incoming<T: Lane>(light: &PreparedLight, p: Vec3<T>) -> Incoming<T> {
         PreparedLight::Distant { to_light, arriving } => Incoming {
             to_light: Vec3::splat(to_light),
             arriving: Vec3::splat(arriving),
-            t_max: T::splat(f32::MAX),
+            t_max: None,
         },
         PreparedLight::Point { position, power } => {
             let (one, zero) = (T::splat(1.0), T::splat(0.0));
@@ -440,7 +441,7 @@ fn incoming<T: Lane>(light: &PreparedLight, p: Vec3<T>) -> Incoming<T> {
                     arriving.y.min(cap),
                     arriving.z.min(cap),
                 ),
-                t_max: dist,
+                t_max: Some(dist),
             }
         }
     }
@@ -635,8 +636,9 @@ fn closest_approach<T: Lane>(
 }
 
 /// Whether the ray `origin + t·dir` (`dir` unit, `oc = origin − center`) meets the sphere at
-/// some `ε < t < t_max`: the shadow test. It decides from the signs and squares of
-/// `b = oc·dir`, `disc = r² − |oc − b·dir|²` and the bounds, with no square root, by
+/// some `ε < t < t_max` (`t_max = None`: no end): the shadow test. It decides from the signs
+/// and squares of `b = oc·dir`, `disc = r² − |oc − b·dir|²` and the bounds, with no square
+/// root, by
 ///
 /// | condition | holds exactly when |
 /// |---|---|
@@ -647,17 +649,28 @@ fn closest_approach<T: Lane>(
 ///
 /// and takes, as [`nearest_hit`] does, the near root when it lies beyond `ε` and the far
 /// root otherwise. A square that overflows to infinity keeps every line of the table true
-/// to its left side (`t_max = f32::MAX` for distant lights gives `t < t_max` always).
+/// to its left side. Without `t_max` the last two lines hold for every ray (they do for
+/// `t_max = f32::MAX` too, with `b` and `disc` bounded by the scene's coordinates), and the
+/// test is `t_far > ε`: the near root's line implies the far root's.
 #[inline(always)]
-pub(crate) fn meets<T: Lane>(oc: Vec3<T>, dir: Vec3<T>, radius_sq: T, eps: T, t_max: T) -> T::Mask {
+pub(crate) fn meets<T: Lane>(
+    oc: Vec3<T>,
+    dir: Vec3<T>,
+    radius_sq: T,
+    eps: T,
+    t_max: Option<T>,
+) -> T::Mask {
     let zero = T::splat(0.0);
     let Some((b, _, disc, touches)) = closest_approach(oc, dir, radius_sq) else {
         return T::lt(zero, zero);
     };
     let be = b + eps;
     let be2 = be * be;
-    let near = T::and(be.lt(zero), disc.lt(be2));
     let far = T::or(be.lt(zero), be2.lt(disc));
+    let Some(t_max) = t_max else {
+        return T::and(touches, far);
+    };
+    let near = T::and(be.lt(zero), disc.lt(be2));
     let bm = b + t_max;
     let bm2 = bm * bm;
     let near_before = T::or(zero.lt(bm), bm2.lt(disc));
