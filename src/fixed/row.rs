@@ -13,7 +13,7 @@ use super::mul::{mul_ii, mul_iu};
 use super::narrow::Narrow;
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
-use crate::encoding::{linear_code_fixed, Encoding};
+use crate::encoding::{linear_code_fixed, Encoding, Transfer};
 use crate::pixel::{pixel_from_codes, FixedShade, HitRecord, Pixel};
 use crate::render::{check_segment, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
@@ -115,12 +115,15 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
             encode(self.background, HitRecord::default(), encoding, x, y)
         });
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
+        // The narrow kernel's dark pixels at the silhouette need the full-width kernel only
+        // under a transfer with finer dark levels than linear ones (see `narrow_lights`).
+        let precise_darks = encoding.transfer != Transfer::Linear;
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             if let Some(mut narrow) = self.narrow_run(start as u32, y, &spans) {
                 // The narrow kernel, and the full-width one where the narrow one hands over,
                 // on that pixel's direction (exact whether stepped or computed directly).
                 for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
-                    let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS) {
+                    let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS, precise_darks) {
                         Narrow::Done(shaded) => shaded,
                         Narrow::Precise => {
                             let dir = self.narrow_direction_wide(column, y);
