@@ -492,9 +492,10 @@ impl<T: ScalarReal> Params<T> {
             #[cfg(feature = "models")]
             Model::Ggx(micro) => {
                 let r2 = s(micro.roughness) * s(micro.roughness);
-                let (kd_albedo, f0, schlick, diffuse_loss) = surface_constants(micro.surface);
+                let (kd_albedo, f0, schlick, diffuse_loss) =
+                    surface_constants(micro.surface, diffuse);
                 return Params {
-                    kd_albedo: diffuse.scale(kd_albedo),
+                    kd_albedo,
                     weight: [s(m.ks), zero, zero],
                     f0,
                     schlick,
@@ -517,10 +518,10 @@ impl<T: ScalarReal> Params<T> {
         for (w, l) in weight[1..].iter_mut().zip(spec.more_lobes) {
             *w = s(l.weight) * norm(s(l.shininess));
         }
-        let (keep_diffuse, f0, schlick, diffuse_loss) = surface_constants(spec.surface);
+        let (kd_albedo, f0, schlick, diffuse_loss) = surface_constants(spec.surface, diffuse);
         // `ks` and `normalized` (1) are Lambert's, and so are the Oren–Nayar and GGX fields.
         Params {
-            kd_albedo: diffuse.scale(keep_diffuse),
+            kd_albedo,
             shininess: s(m.shininess),
             blinn: if blinn { one } else { zero },
             weight,
@@ -533,20 +534,24 @@ impl<T: ScalarReal> Params<T> {
     }
 }
 
-/// A surface's constants: 1 or 0 (whether the diffuse lobe is kept), `F₀`, and the
-/// `schlick` and `diffuse_loss` flags.
-fn surface_constants<T: ScalarReal>(surface: Surface) -> (T, Vec3<T>, T, T) {
+/// A surface's constants: the diffuse lobe's `kd·albedo/π` (`diffuse`, or 0 for a metal),
+/// `F₀`, and the `schlick` and `diffuse_loss` flags.
+fn surface_constants<T: ScalarReal>(
+    surface: Surface,
+    diffuse: Vec3<T>,
+) -> (Vec3<T>, Vec3<T>, T, T) {
     let s = T::splat;
     let (zero, one) = (s(0.0), s(1.0));
     match surface {
-        Surface::Dielectric { ior: None } => (one, Vec3::new(one, one, one), zero, zero),
+        Surface::Dielectric { ior: None } => (diffuse, Vec3::new(one, one, one), zero, zero),
         Surface::Dielectric { ior: Some(ior) } => {
             let f = dielectric_f0(s(ior));
-            (one, Vec3::new(f, f, f), one, one)
+            (diffuse, Vec3::new(f, f, f), one, one)
         }
         Surface::Metal(metal) => {
             let c = metal.f0();
-            (zero, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
+            let black = Vec3::new(zero, zero, zero);
+            (black, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
         }
     }
 }
