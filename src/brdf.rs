@@ -85,6 +85,14 @@
 //! independently (Oren–Nayar from the angles themselves, GGX in its `tan θ` form). A packet
 //! computes the Oren–Nayar and GGX terms only when one of its lanes shows such a material
 //! ([`Present`]), so frames without them run the same arithmetic as before they existed.
+//!
+//! The kernels hold Oren–Nayar and GGX only with the crate feature `models` (on by default).
+//! Without it, [`Params`], `Masks` and `Present` have no fields for them, [`Params::of`]
+//! computes no constants of them and `terms` no term, so neither the kernels nor the
+//! prepares carry any of their code; a [`Scene`](crate::Scene) refuses such a sphere instead
+//! ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)). The formulas themselves
+//! ([`oren_nayar_ab`], [`oren_nayar`], [`ggx`]) stay public either way: they cost nothing
+//! where they are not called.
 
 use crate::real::Real;
 use crate::scene::{Material, Model, Surface, MORE_LOBES};
@@ -256,6 +264,10 @@ pub fn blinn_phong_normalization<T: ScalarReal>(n: T) -> T {
 ///
 /// Flags are numbers (1 set, 0 clear) so that a packet's lanes can hold different materials;
 /// [`Params::masks`] turns them into lane masks once per packet.
+///
+/// The Oren–Nayar and GGX fields exist only with the feature `models`: build a `Params` with
+/// [`Params::of`] (and `..` from one), not from a literal of every field, to compile either
+/// way.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Params<T> {
     /// `kd·albedo` (classic), `kd·albedo/π` (normalized, Lambert), 0 (metals).
@@ -278,15 +290,20 @@ pub struct Params<T> {
     pub schlick: T,
     /// 1: the diffuse lobe is multiplied by `1 − F` (dielectric with `ior`).
     pub diffuse_loss: T,
-    /// 1: the diffuse lobe is Oren–Nayar's, with `on_a` and `on_b`.
+    /// 1: the diffuse lobe is Oren–Nayar's, with `on_a` and `on_b` (feature `models`).
+    #[cfg(feature = "models")]
     pub oren_nayar: T,
-    /// Oren–Nayar's `A` (1 for other models).
+    /// Oren–Nayar's `A` (1 for other models; feature `models`).
+    #[cfg(feature = "models")]
     pub on_a: T,
-    /// Oren–Nayar's `B` (0 for other models).
+    /// Oren–Nayar's `B` (0 for other models; feature `models`).
+    #[cfg(feature = "models")]
     pub on_b: T,
-    /// 1: the specular lobe is GGX, weighted by `weight[0] = ks`.
+    /// 1: the specular lobe is GGX, weighted by `weight[0] = ks` (feature `models`).
+    #[cfg(feature = "models")]
     pub ggx: T,
-    /// GGX's `α² = roughness⁴` (1 for other models).
+    /// GGX's `α² = roughness⁴` (1 for other models; feature `models`).
+    #[cfg(feature = "models")]
     pub alpha2: T,
 }
 
@@ -301,8 +318,10 @@ pub struct Masks<T: Real> {
     /// Schlick's factor.
     pub schlick: T::Mask,
     /// Oren–Nayar diffuse.
+    #[cfg(feature = "models")]
     pub oren_nayar: T::Mask,
     /// GGX specular.
+    #[cfg(feature = "models")]
     pub ggx: T::Mask,
 }
 
@@ -319,8 +338,10 @@ pub struct Present {
     /// Some lane has lobe 1 or 2.
     pub more_lobes: bool,
     /// Some lane has Oren–Nayar diffuse.
+    #[cfg(feature = "models")]
     pub oren_nayar: bool,
     /// Some lane has GGX specular.
+    #[cfg(feature = "models")]
     pub ggx: bool,
 }
 
@@ -330,7 +351,9 @@ impl Present {
         normalized: true,
         schlick: true,
         more_lobes: true,
+        #[cfg(feature = "models")]
         oren_nayar: true,
+        #[cfg(feature = "models")]
         ggx: true,
     };
 }
@@ -351,17 +374,22 @@ impl<T: Real> Params<T> {
             f0: Vec3::new(s(p.f0.x), s(p.f0.y), s(p.f0.z)),
             schlick: s(p.schlick),
             diffuse_loss: s(p.diffuse_loss),
+            #[cfg(feature = "models")]
             oren_nayar: s(p.oren_nayar),
+            #[cfg(feature = "models")]
             on_a: s(p.on_a),
+            #[cfg(feature = "models")]
             on_b: s(p.on_b),
+            #[cfg(feature = "models")]
             ggx: s(p.ggx),
+            #[cfg(feature = "models")]
             alpha2: s(p.alpha2),
         }
     }
 
     /// `a` on lanes where `mask` is set, else `b`: only the normalized models' fields
     /// (`weight`, `more_shininess`, `f0`, `schlick`, `diffuse_loss`, `normalized`, and
-    /// Oren–Nayar's and GGX's).
+    /// Oren–Nayar's and GGX's with the feature `models`).
     #[inline(always)]
     pub fn select_normalized(mask: T::Mask, a: &Params<T>, b: &mut Params<T>) {
         for (w, v) in b.weight.iter_mut().zip(a.weight) {
@@ -374,11 +402,14 @@ impl<T: Real> Params<T> {
         b.schlick = T::select(mask, a.schlick, b.schlick);
         b.diffuse_loss = T::select(mask, a.diffuse_loss, b.diffuse_loss);
         b.normalized = T::select(mask, a.normalized, b.normalized);
-        b.oren_nayar = T::select(mask, a.oren_nayar, b.oren_nayar);
-        b.on_a = T::select(mask, a.on_a, b.on_a);
-        b.on_b = T::select(mask, a.on_b, b.on_b);
-        b.ggx = T::select(mask, a.ggx, b.ggx);
-        b.alpha2 = T::select(mask, a.alpha2, b.alpha2);
+        #[cfg(feature = "models")]
+        {
+            b.oren_nayar = T::select(mask, a.oren_nayar, b.oren_nayar);
+            b.on_a = T::select(mask, a.on_a, b.on_a);
+            b.on_b = T::select(mask, a.on_b, b.on_b);
+            b.ggx = T::select(mask, a.ggx, b.ggx);
+            b.alpha2 = T::select(mask, a.alpha2, b.alpha2);
+        }
     }
 
     /// The flags as lane masks.
@@ -389,7 +420,9 @@ impl<T: Real> Params<T> {
             blinn: zero.lt(self.blinn),
             normalized: zero.lt(self.normalized),
             schlick: zero.lt(self.schlick),
+            #[cfg(feature = "models")]
             oren_nayar: zero.lt(self.oren_nayar),
+            #[cfg(feature = "models")]
             ggx: zero.lt(self.ggx),
         }
     }
@@ -398,6 +431,11 @@ impl<T: Real> Params<T> {
 impl<T: ScalarReal> Params<T> {
     /// The constants of `m`: normalization factors, `F₀`, and the diffuse scale, computed
     /// once (in prepare, or in `f64` by the tests).
+    ///
+    /// Without the feature `models` this computes nothing for Oren–Nayar and GGX: it gives
+    /// such a material the classic constants of its `kd`, `albedo`, `ks` and `shininess`. No
+    /// path ever renders them, because no [`Scene`](crate::Scene) holds such a material (it
+    /// refuses it with [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
     pub fn of(m: &Material) -> Self {
         let s = T::splat;
         let (zero, one) = (s(0.0), s(1.0));
@@ -419,10 +457,15 @@ impl<T: ScalarReal> Params<T> {
             f0: Vec3::new(one, one, one),
             schlick: zero,
             diffuse_loss: zero,
+            #[cfg(feature = "models")]
             oren_nayar: zero,
+            #[cfg(feature = "models")]
             on_a: one,
+            #[cfg(feature = "models")]
             on_b: zero,
+            #[cfg(feature = "models")]
             ggx: zero,
+            #[cfg(feature = "models")]
             alpha2: one,
         };
         let diffuse = kd_albedo.scale(one / T::pi());
@@ -436,6 +479,7 @@ impl<T: ScalarReal> Params<T> {
             Model::NormalizedPhong(spec) => (spec, false),
             Model::NormalizedBlinnPhong(spec) => (spec, true),
             Model::Lambert => return lambert,
+            #[cfg(feature = "models")]
             Model::OrenNayar { roughness } => {
                 let (on_a, on_b) = oren_nayar_ab(s(roughness));
                 return Params {
@@ -445,11 +489,13 @@ impl<T: ScalarReal> Params<T> {
                     ..lambert
                 };
             }
+            #[cfg(feature = "models")]
             Model::Ggx(micro) => {
                 let r2 = s(micro.roughness) * s(micro.roughness);
-                let (kd_albedo, f0, schlick, diffuse_loss) = surface_constants(micro.surface);
+                let (kd_albedo, f0, schlick, diffuse_loss) =
+                    surface_constants(micro.surface, diffuse);
                 return Params {
-                    kd_albedo: diffuse.scale(kd_albedo),
+                    kd_albedo,
                     weight: [s(m.ks), zero, zero],
                     f0,
                     schlick,
@@ -472,13 +518,12 @@ impl<T: ScalarReal> Params<T> {
         for (w, l) in weight[1..].iter_mut().zip(spec.more_lobes) {
             *w = s(l.weight) * norm(s(l.shininess));
         }
-        let (keep_diffuse, f0, schlick, diffuse_loss) = surface_constants(spec.surface);
+        let (kd_albedo, f0, schlick, diffuse_loss) = surface_constants(spec.surface, diffuse);
+        // `ks` and `normalized` (1) are Lambert's, and so are the Oren–Nayar and GGX fields.
         Params {
-            kd_albedo: diffuse.scale(keep_diffuse),
-            ks: one,
+            kd_albedo,
             shininess: s(m.shininess),
             blinn: if blinn { one } else { zero },
-            normalized: one,
             weight,
             more_shininess: spec.more_lobes.map(|l| s(l.shininess)),
             f0,
@@ -489,20 +534,24 @@ impl<T: ScalarReal> Params<T> {
     }
 }
 
-/// A surface's constants: 1 or 0 (whether the diffuse lobe is kept), `F₀`, and the
-/// `schlick` and `diffuse_loss` flags.
-fn surface_constants<T: ScalarReal>(surface: Surface) -> (T, Vec3<T>, T, T) {
+/// A surface's constants: the diffuse lobe's `kd·albedo/π` (`diffuse`, or 0 for a metal),
+/// `F₀`, and the `schlick` and `diffuse_loss` flags.
+fn surface_constants<T: ScalarReal>(
+    surface: Surface,
+    diffuse: Vec3<T>,
+) -> (Vec3<T>, Vec3<T>, T, T) {
     let s = T::splat;
     let (zero, one) = (s(0.0), s(1.0));
     match surface {
-        Surface::Dielectric { ior: None } => (one, Vec3::new(one, one, one), zero, zero),
+        Surface::Dielectric { ior: None } => (diffuse, Vec3::new(one, one, one), zero, zero),
         Surface::Dielectric { ior: Some(ior) } => {
             let f = dielectric_f0(s(ior));
-            (one, Vec3::new(f, f, f), one, one)
+            (diffuse, Vec3::new(f, f, f), one, one)
         }
         Surface::Metal(metal) => {
             let c = metal.f0();
-            (zero, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
+            let black = Vec3::new(zero, zero, zero);
+            (black, Vec3::new(s(c.r), s(c.g), s(c.b)), one, zero)
         }
     }
 }
@@ -557,10 +606,12 @@ pub fn terms<T: Pow>(
             sum = sum + *w * T::pow_clamped(cosine, e);
         }
     }
+    #[cfg(feature = "models")]
     if present.ggx {
         let g = ggx(p.alpha2, n, to_light, view);
         sum = T::select(masks.ggx, p.weight[0] * g, sum);
     }
+    #[cfg(feature = "models")]
     let diffuse = if present.oren_nayar {
         let n_dot_v = n.dot(view).max(zero);
         let l_dot_v = to_light.dot(view);
@@ -569,6 +620,8 @@ pub fn terms<T: Pow>(
     } else {
         n_dot_l
     };
+    #[cfg(not(feature = "models"))]
+    let diffuse = n_dot_l;
     let one = T::splat(1.0);
     let (f, diffuse_scale) = if present.schlick {
         let w = schlick_weight(half_angle_cosine(to_light, view));

@@ -4,7 +4,9 @@
 //! `scenes/exponent-series.toml` (the harness tests that the two agree); [`materials`] is
 //! the gallery of models, the same as `scenes/materials.toml`; [`microfacets`] sets GGX and
 //! Oren–Nayar next to their normalized counterparts (`scenes/microfacets.toml`), and
-//! [`full_moon`] shows why Oren–Nayar exists (`scenes/full-moon.toml`).
+//! [`full_moon`] shows why Oren–Nayar exists (`scenes/full-moon.toml`). Those two need the
+//! crate feature `models`: without it they return the scene's refusal of their first such
+//! sphere ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
 
 use crate::pixel::LinearRgb;
 use crate::scene::{Camera, Light, Material, Model, Scene, SceneError, Sphere};
@@ -207,6 +209,9 @@ pub fn blinn_phong_exponent(roughness: f32) -> f32 {
 /// highlight has a longer tail than Blinn-Phong's at the same peak, and the rough metals
 /// lose the energy single scattering does not count. Every material is energy conserving.
 /// The same numbers are in `scenes/microfacets.toml`.
+///
+/// Without the feature `models` this returns [`SceneError::Invalid`] for sphere 0's `model`
+/// ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
 pub fn microfacets() -> Result<Scene, SceneError> {
     microfacets_with_capacity()
 }
@@ -287,6 +292,9 @@ pub const FULL_MOON_SIZE: (u32, u32) = (640, 320);
 /// its centre's, reached at the rim: a flat disc, like the moon. Same albedo and weights; the Oren–Nayar
 /// sphere is darker in the middle (`A` ≈ 0.62). The same numbers are in
 /// `scenes/full-moon.toml`.
+///
+/// Without the feature `models` this returns [`SceneError::Invalid`] for sphere 1's `model`
+/// ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
 pub fn full_moon() -> Result<Scene<2, 1>, SceneError> {
     let camera = Camera {
         position: Vec3::new(0.0, 0.0, 10.0),

@@ -81,7 +81,8 @@ pub enum RenderError {
     },
     /// A sphere's model has no fixed-point implementation yet (Oren–Nayar and GGX render on
     /// the float paths only); only [`PreparedFixed::new`](crate::PreparedFixed::new) returns
-    /// it.
+    /// it, and only with the feature `models` (without it no scene holds such a sphere:
+    /// [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
     ModelNotOnFixedPath {
         /// The sphere.
         item: Item,

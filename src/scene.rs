@@ -7,6 +7,11 @@
 //! generics backed by `heapless::Vec`, so a scene lives on the stack or in a `static`, and
 //! exceeding a capacity is an error, not an allocation.
 //!
+//! The models Oren–Nayar and GGX are part of the API in every build, but the kernels hold
+//! them only with the crate feature `models` (on by default). Without it, a sphere of such a
+//! material is refused as it is added, with [`Problem::ModelNotBuilt`] on its `model`: a
+//! scene never holds a model the kernels leave out, and never renders another in its place.
+//!
 //! # Ranges
 //!
 //! Every number is finite and bounded, so that geometry never overflows (squared distances
@@ -81,6 +86,10 @@ pub struct Camera {
 ///
 /// For every model `kd`, `albedo`, `ks` and `shininess` keep their meaning: the diffuse
 /// weight and colour, and the weight and exponent of the first specular lobe.
+///
+/// [`Model::OrenNayar`] and [`Model::Ggx`] exist in every build, but render only with the
+/// crate feature `models` (on by default): without it, [`Scene::add_sphere`] refuses them
+/// with [`Problem::ModelNotBuilt`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Model {
@@ -100,7 +109,7 @@ pub enum Model {
     /// Oren–Nayar rough diffuse (the qualitative model of Oren and Nayar, 1994):
     /// `kd·albedo/π·(A + B·max(0, cos(φᵢ − φₒ))·sin α·tan β)`, with `roughness` the standard
     /// deviation `σ` of the facet slopes in radians, `0 ≤ σ ≤` [`MAX_OREN_NAYAR_ROUGHNESS`].
-    /// At `σ = 0` it is Lambert. `ks` and `shininess` are not used.
+    /// At `σ = 0` it is Lambert. `ks` and `shininess` are not used. Feature `models`.
     OrenNayar {
         /// `σ`, radians.
         roughness: f32,
@@ -108,7 +117,7 @@ pub enum Model {
     /// Cook–Torrance microfacet specular with the GGX (Trowbridge–Reitz) distribution, Smith
     /// height-correlated masking-shadowing and Schlick Fresnel, weighted by `ks`, plus a
     /// Lambert lobe `kd·albedo/π` for dielectrics (see [`Microfacet`] and [`crate::brdf`]).
-    /// `shininess` is not used.
+    /// `shininess` is not used. Feature `models`.
     Ggx(Microfacet),
 }
 
@@ -461,6 +470,10 @@ pub enum Problem {
     /// A sphere light overlaps a scene sphere (reported on the light's `radius`, whichever
     /// of the two was added last): every shaded point must see the light from outside.
     LightOverlapsSphere,
+    /// The material's model is Oren–Nayar or GGX, and this build of the crate leaves them
+    /// out: they need the feature `models` (on by default; the firmware builds turn it off).
+    /// Reported on the sphere's `model`. Never returned with the feature on.
+    ModelNotBuilt,
 }
 
 /// Why a scene was refused: the item, the field (named as in the scene file) and the problem.
@@ -522,6 +535,9 @@ impl fmt::Display for Problem {
             Problem::UpParallelToView => "must not be parallel to the view direction",
             Problem::FieldOfViewOutOfRange => "must be between 0 and 180 degrees, exclusive",
             Problem::LightOverlapsSphere => "makes the light's sphere overlap a scene sphere",
+            Problem::ModelNotBuilt => {
+                "is oren-nayar or ggx, which this build of shadeline leaves out (feature `models`)"
+            }
         })
     }
 }
@@ -679,9 +695,15 @@ impl Material {
             }
         }
         match self.model {
+            #[cfg(not(feature = "models"))]
+            Model::OrenNayar { .. } | Model::Ggx(_) => {
+                return Err(c.err("model", Problem::ModelNotBuilt));
+            }
+            #[cfg(feature = "models")]
             Model::OrenNayar { roughness } => {
                 c.non_negative("roughness", &[roughness], MAX_OREN_NAYAR_ROUGHNESS)?;
             }
+            #[cfg(feature = "models")]
             Model::Ggx(m) => {
                 c.finite("roughness", &[m.roughness])?;
                 if m.roughness < MIN_GGX_ROUGHNESS {

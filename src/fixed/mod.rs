@@ -77,7 +77,9 @@
 //! [`MAX_PLANE_SCALE`]), `albedo`/`kd`/`ks`/`color`/`intensity` (a channel of `albedo`,
 //! `kd·albedo`, `ks`, a distant light's colour or `colour·intensity` above [`MAX_LEVEL`]).
 //! A sphere whose model is Oren–Nayar or GGX is refused with
-//! [`RenderError::ModelNotOnFixedPath`](crate::RenderError) naming the sphere.
+//! [`RenderError::ModelNotOnFixedPath`](crate::RenderError) naming the sphere (with the
+//! feature `models`; without it the scene itself refuses such a sphere, so the check is left
+//! out).
 //!
 //! # Costs
 //!

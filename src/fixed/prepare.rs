@@ -18,7 +18,9 @@ use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
 use crate::brdf::{Params, LOBES};
 use crate::render::RenderError;
-use crate::scene::{Item, Light, Model, Scene, MORE_LOBES};
+#[cfg(feature = "models")]
+use crate::scene::Model;
+use crate::scene::{Item, Light, Scene, MORE_LOBES};
 use crate::vec3::Vec3;
 use crate::MAX_DIMENSION;
 use fixed::types::{I16F48, I32F32, U16F16};
@@ -361,6 +363,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         for (i, s) in scene.spheres().iter().enumerate() {
             let item = Item::Sphere(i);
             let m = &s.material;
+            // Without the feature `models` no scene holds these models (it refuses them).
+            #[cfg(feature = "models")]
             if matches!(m.model, Model::OrenNayar { .. } | Model::Ggx(_)) {
                 return Err(RenderError::ModelNotOnFixedPath { item });
             }

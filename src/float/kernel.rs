@@ -281,8 +281,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 Params::select_normalized(here, &Params::splat(&s.params), params);
                 present.schlick |= s.schlick;
                 present.more_lobes |= s.more_lobes;
-                present.oren_nayar |= s.oren_nayar;
-                present.ggx |= s.ggx;
+                #[cfg(feature = "models")]
+                {
+                    present.oren_nayar |= s.oren_nayar;
+                    present.ggx |= s.ggx;
+                }
             }
         }
     }
@@ -521,10 +524,15 @@ const NO_MATERIAL: Params<f32> = Params {
     f0: Vec3::new(1.0, 1.0, 1.0),
     schlick: 0.0,
     diffuse_loss: 0.0,
+    #[cfg(feature = "models")]
     oren_nayar: 0.0,
+    #[cfg(feature = "models")]
     on_a: 1.0,
+    #[cfg(feature = "models")]
     on_b: 0.0,
+    #[cfg(feature = "models")]
     ggx: 0.0,
+    #[cfg(feature = "models")]
     alpha2: 1.0,
 };
 

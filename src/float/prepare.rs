@@ -118,8 +118,10 @@ pub(crate) struct PreparedSphere {
     /// Lobe 1 or 2 has a weight.
     pub more_lobes: bool,
     /// Oren–Nayar diffuse.
+    #[cfg(feature = "models")]
     pub oren_nayar: bool,
     /// GGX specular.
+    #[cfg(feature = "models")]
     pub ggx: bool,
     /// The silhouette's constants for edge anti-aliasing (see `edges`).
     #[cfg(feature = "antialias")]
@@ -234,7 +236,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 normalized: params.normalized > 0.0,
                 schlick: params.schlick > 0.0,
                 more_lobes: params.weight[1..].iter().any(|&w| w > 0.0),
+                #[cfg(feature = "models")]
                 oren_nayar: params.oren_nayar > 0.0,
+                #[cfg(feature = "models")]
                 ggx: params.ggx > 0.0,
                 #[cfg(feature = "antialias")]
                 outline: Outline::of(s.center - eye, s.radius, pixel, right, up),

@@ -1,0 +1,121 @@
+//! shadeline built without the feature `models`: the `Model` variants still exist, but a scene
+//! refuses a sphere that uses one, with [`Problem::ModelNotBuilt`] on that sphere's `model`,
+//! never a panic and never another model in its place; and the frames of the other models are
+//! the same bits as with the feature (the firmware's CRCs). Each test fails if the refusal
+//! does not fire, as it would in a build with `models` on.
+
+use shadeline::{
+    exponent_series, full_moon, materials, microfacets, Camera, Item, LinearRgb, Material, Metal,
+    Microfacet, Model, Prepared, PreparedFixed, Problem, Render, Rgb565, Scalar, Scene, SceneError,
+    Simd8, Sphere, Surface, Vec3,
+};
+
+// The firmware's frame and CRCs; the counts and the microfacet gallery's are not used here.
+#[allow(dead_code)]
+mod expected {
+    include!("../../../firmware/expected.rs");
+}
+
+fn scene() -> Scene<4, 1> {
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 8.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 40.0,
+    };
+    Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).expect("valid camera")
+}
+
+fn sphere(x: f32, model: Model) -> Sphere {
+    Sphere {
+        center: Vec3::new(x, 0.0, 0.0),
+        radius: 1.0,
+        material: Material {
+            model,
+            ..Material::default()
+        },
+    }
+}
+
+fn refused(index: usize) -> SceneError {
+    SceneError::Invalid {
+        item: Item::Sphere(index),
+        field: "model",
+        problem: Problem::ModelNotBuilt,
+    }
+}
+
+#[test]
+fn oren_nayar_and_ggx_spheres_are_refused_by_index() {
+    let mut s = scene();
+    assert_eq!(s.add_sphere(sphere(-2.0, Model::Phong)), Ok(0));
+    let rough = Model::OrenNayar { roughness: 0.5 };
+    assert_eq!(s.add_sphere(sphere(0.0, rough)), Err(refused(1)));
+    let gold = Model::Ggx(Microfacet {
+        roughness: 0.4,
+        surface: Surface::Metal(Metal::Gold),
+    });
+    assert_eq!(s.add_sphere(sphere(0.0, gold)), Err(refused(1)));
+    // Refused spheres are not added: the next one still gets index 1.
+    assert_eq!(s.spheres().len(), 1);
+    assert_eq!(s.add_sphere(sphere(2.0, Model::Lambert)), Ok(1));
+    // The model is refused before its roughness is read: no range error for a number the
+    // kernels would never see.
+    let bad = Model::OrenNayar {
+        roughness: f32::NAN,
+    };
+    assert_eq!(s.add_sphere(sphere(0.0, bad)), Err(refused(2)));
+}
+
+#[test]
+fn the_error_names_the_sphere_the_field_and_the_feature() {
+    let text = refused(3).to_string();
+    assert_eq!(
+        text,
+        "sphere 3: `model` is oren-nayar or ggx, which this build of shadeline leaves out \
+         (feature `models`)"
+    );
+}
+
+#[test]
+fn presets_of_the_models_return_the_refusal() {
+    assert_eq!(microfacets().map(|_| ()), Err(refused(0)));
+    assert_eq!(full_moon().map(|_| ()), Err(refused(1)));
+    // The other presets hold no such model.
+    assert!(exponent_series().is_ok());
+    assert!(materials().is_ok());
+}
+
+/// CRC32/IEEE over the pixels as little-endian `u16` bytes, row-major: the firmware's rule.
+fn rgb565_crc32(pixels: &[Rgb565]) -> u32 {
+    let mut crc = !0u32;
+    for byte in pixels.iter().flat_map(|px| px.0.to_le_bytes()) {
+        crc ^= u32::from(byte);
+        for _ in 0..8 {
+            crc = if crc & 1 != 0 {
+                (crc >> 1) ^ 0xedb8_8320
+            } else {
+                crc >> 1
+            };
+        }
+    }
+    !crc
+}
+
+fn crc<R: Render>(path: &R) -> u32 {
+    let mut pixels = vec![Rgb565::default(); (path.width() * path.height()) as usize];
+    path.render_frame(&mut pixels).expect("frame renders");
+    rgb565_crc32(&pixels)
+}
+
+#[test]
+fn the_exponent_series_is_the_same_frame_without_the_models() {
+    let scene = exponent_series().expect("built-in scene is valid");
+    let (w, h) = (expected::WIDTH, expected::HEIGHT);
+    let scalar = Prepared::<Scalar>::new(&scene, w, h).unwrap();
+    let simd = Prepared::<Simd8>::new(&scene, w, h).unwrap();
+    let fixed = PreparedFixed::new(&scene, w, h).unwrap();
+    assert_eq!(crc(&scalar), expected::SCALAR_RGB565_CRC32);
+    assert_eq!(crc(&simd), expected::SCALAR_RGB565_CRC32);
+    assert_eq!(crc(&fixed), expected::FIXED_RGB565_CRC32);
+}
