@@ -102,8 +102,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// The span of every sphere on row `y`, in scene order (`None`: not on this row).
     ///
     /// With spans turned off ([`Prepared::with_spans`]) every sphere spans the whole row. With
-    /// anti-aliasing on ([`Prepared::with_antialiasing`]) a span also holds every pixel the
-    /// sphere's outline partly covers.
+    /// anti-aliasing on (`Prepared::with_antialiasing`, with the `antialias` feature) a span
+    /// also holds every pixel the sphere's outline partly covers.
     pub fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
         let row = self.row(y);
         let mut out = heapless::Vec::new();
