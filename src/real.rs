@@ -95,33 +95,43 @@ macro_rules! scalar_real {
             fn le(self, rhs: Self) -> bool {
                 self <= rhs
             }
-            #[inline(always)]
-            fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
-                if mask {
-                    if_true
-                } else {
-                    if_false
-                }
-            }
-            #[inline(always)]
-            fn and(a: bool, b: bool) -> bool {
-                a & b
-            }
-            #[inline(always)]
-            fn or(a: bool, b: bool) -> bool {
-                a | b
-            }
-            #[inline(always)]
-            fn and_not(a: bool, b: bool) -> bool {
-                a & !b
-            }
-            #[inline(always)]
-            fn any(mask: bool) -> bool {
-                mask
-            }
+            bool_mask_methods!();
         }
     };
 }
+
+/// The methods of [`Real`] for a one-lane type whose mask is `bool`: `select` is an `if`,
+/// the mask operations are `bool`'s. Shared by `f32`, `f64` and the scalar lane of the
+/// float kernel (`float::lane::Rooted`).
+macro_rules! bool_mask_methods {
+    () => {
+        #[inline(always)]
+        fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
+            if mask {
+                if_true
+            } else {
+                if_false
+            }
+        }
+        #[inline(always)]
+        fn and(a: bool, b: bool) -> bool {
+            a & b
+        }
+        #[inline(always)]
+        fn or(a: bool, b: bool) -> bool {
+            a | b
+        }
+        #[inline(always)]
+        fn and_not(a: bool, b: bool) -> bool {
+            a & !b
+        }
+        #[inline(always)]
+        fn any(mask: bool) -> bool {
+            mask
+        }
+    };
+}
+pub(crate) use bool_mask_methods;
 
 scalar_real!(f32, libm::sqrtf, core::f32::consts::PI);
 scalar_real!(f64, libm::sqrt, core::f64::consts::PI);

@@ -20,7 +20,7 @@
 //! one). The one transcendental the kernel needs, the specular `pow`, is built from these
 //! primitives in `math`, once, for every width.
 
-use crate::real::Real;
+use crate::real::{bool_mask_methods, Real};
 use core::marker::PhantomData;
 use core::ops::{Add, Div, Mul, Neg, Sub};
 use wide::{f32x4, f32x8, i32x4, i32x8};
@@ -188,30 +188,7 @@ impl<Q: SquareRoot> Real for Rooted<Q> {
     fn le(self, rhs: Self) -> bool {
         self.0 <= rhs.0
     }
-    #[inline(always)]
-    fn select(mask: bool, if_true: Self, if_false: Self) -> Self {
-        if mask {
-            if_true
-        } else {
-            if_false
-        }
-    }
-    #[inline(always)]
-    fn and(a: bool, b: bool) -> bool {
-        a & b
-    }
-    #[inline(always)]
-    fn or(a: bool, b: bool) -> bool {
-        a | b
-    }
-    #[inline(always)]
-    fn and_not(a: bool, b: bool) -> bool {
-        a & !b
-    }
-    #[inline(always)]
-    fn any(mask: bool) -> bool {
-        mask
-    }
+    bool_mask_methods!();
 }
 
 impl<Q: SquareRoot> Lane for Rooted<Q> {

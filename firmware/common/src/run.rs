@@ -182,6 +182,28 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         (ok.then_some(&*slot), instructions)
     }
 
+    /// [`Session::build`], then [`Session::run`] on what it built: a path prepared by `make`
+    /// into `slot`, rendered into `sink` and reported as `path_name`. A prepare that fails
+    /// is reported as `error=prepare-<path_name>` and fails the session.
+    pub fn build_and_run<R: Render, E>(
+        &mut self,
+        path_name: &str,
+        slot: &mut Option<R>,
+        make: impl FnOnce() -> Result<R, E>,
+        sink: Sink<'_>,
+        expected: Expected,
+    ) {
+        match self.build(slot, make) {
+            (Some(path), prepare) => self.run(path_name, path, sink, prepare, expected),
+            (None, _) => {
+                self.note("shadeline-fw error=prepare-");
+                self.note(path_name);
+                self.note("\n");
+                self.fail();
+            }
+        }
+    }
+
     /// Renders `path` into `sink`, measures it and reports it against `expected`, with
     /// `prepare` (from [`Session::build`]) as the instructions of its prepare.
     pub fn run<R: Render>(

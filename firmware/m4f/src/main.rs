@@ -96,81 +96,51 @@ fn main() -> ! {
         session.note("shadeline-fw error=scene\n");
         exit(false)
     };
-    match session.build(SCALAR, || Prepared::<M4fScalar>::new(scene, WIDTH, HEIGHT)) {
-        (Some(path), prepare) => session.run(
-            "scalar",
-            path,
-            Sink::Frame(FRAME),
-            prepare,
-            Expected {
-                crc: SCALAR_RGB565_CRC32,
-                covered: SCALAR_COVERED,
-            },
-        ),
-        (None, _) => {
-            session.note("shadeline-fw error=prepare-scalar\n");
-            session.fail();
-        }
-    }
-    match session.build(SCALAR_LIBM, || {
-        Prepared::<Scalar>::new(scene, WIDTH, HEIGHT)
-    }) {
-        (Some(path), prepare) => session.run(
-            "scalar-libm",
-            path,
-            Sink::Frame(FRAME),
-            prepare,
-            Expected {
-                crc: SCALAR_RGB565_CRC32,
-                covered: SCALAR_COVERED,
-            },
-        ),
-        (None, _) => {
-            session.note("shadeline-fw error=prepare-scalar-libm\n");
-            session.fail();
-        }
-    }
+    let series = Expected {
+        crc: SCALAR_RGB565_CRC32,
+        covered: SCALAR_COVERED,
+    };
+    session.build_and_run(
+        "scalar",
+        SCALAR,
+        || Prepared::<M4fScalar>::new(scene, WIDTH, HEIGHT),
+        Sink::Frame(FRAME),
+        series,
+    );
+    session.build_and_run(
+        "scalar-libm",
+        SCALAR_LIBM,
+        || Prepared::<Scalar>::new(scene, WIDTH, HEIGHT),
+        Sink::Frame(FRAME),
+        series,
+    );
     #[cfg(feature = "antialias")]
-    match session.build(SCALAR_AA, || {
-        Prepared::<M4fScalar>::new(scene, WIDTH, HEIGHT).map(|p| p.with_antialiasing(true))
-    }) {
-        (Some(path), prepare) => session.run(
-            "scalar-aa",
-            path,
-            Sink::Frame(FRAME),
-            prepare,
-            Expected {
-                crc: common::expected::SCALAR_AA_RGB565_CRC32,
-                covered: SCALAR_COVERED,
-            },
-        ),
-        (None, _) => {
-            session.note("shadeline-fw error=prepare-scalar-aa\n");
-            session.fail();
-        }
-    }
+    session.build_and_run(
+        "scalar-aa",
+        SCALAR_AA,
+        || Prepared::<M4fScalar>::new(scene, WIDTH, HEIGHT).map(|p| p.with_antialiasing(true)),
+        Sink::Frame(FRAME),
+        Expected {
+            crc: common::expected::SCALAR_AA_RGB565_CRC32,
+            covered: SCALAR_COVERED,
+        },
+    );
     #[cfg(feature = "microfacets")]
     {
         let (Some(micro), _) = session.build(MICRO_SCENE, shadeline::microfacets) else {
             session.note("shadeline-fw error=scene-microfacets\n");
             exit(false)
         };
-        match session.build(MICRO, || Prepared::<M4fScalar>::new(micro, WIDTH, HEIGHT)) {
-            (Some(path), prepare) => session.run(
-                "scalar-microfacets",
-                path,
-                Sink::Frame(FRAME),
-                prepare,
-                Expected {
-                    crc: common::expected::MICROFACETS_SCALAR_RGB565_CRC32,
-                    covered: common::expected::MICROFACETS_SCALAR_COVERED,
-                },
-            ),
-            (None, _) => {
-                session.note("shadeline-fw error=prepare-scalar-microfacets\n");
-                session.fail();
-            }
-        }
+        session.build_and_run(
+            "scalar-microfacets",
+            MICRO,
+            || Prepared::<M4fScalar>::new(micro, WIDTH, HEIGHT),
+            Sink::Frame(FRAME),
+            Expected {
+                crc: common::expected::MICROFACETS_SCALAR_RGB565_CRC32,
+                covered: common::expected::MICROFACETS_SCALAR_COVERED,
+            },
+        );
     }
     match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
         (Some(path), prepare) => session.run(
