@@ -10,7 +10,7 @@
 
 use super::kernel::{ray, Shaded};
 use super::mul::{mul_ii, mul_iu};
-use super::narrow::Narrow;
+use super::narrow::{Narrow, NarrowRun};
 use super::prepare::PreparedFixed;
 use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, Encoding, Transfer};
@@ -119,7 +119,8 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         // under a transfer with finer dark levels than linear ones (see `narrow_lights`).
         let precise_darks = encoding.transfer != Transfer::Linear;
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
-            if let Some(mut narrow) = self.narrow_run(start as u32, y, &spans) {
+            let mut narrow = NarrowRun::new();
+            if self.narrow_run(&mut narrow, start as u32, y, &spans) {
                 // The narrow kernel, and the full-width one where the narrow one hands over,
                 // on that pixel's direction (exact whether stepped or computed directly).
                 for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
