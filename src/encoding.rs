@@ -224,7 +224,19 @@ pub(crate) fn luma<T: Real>([r, g, b]: [T; 3]) -> T {
 /// `⌊clamp(c, 0, 1)·max + ½⌋`: round to the nearest of `max + 1` levels. NaN gives 0.
 #[inline(always)]
 pub fn quantize(c: f32, max: f32) -> u16 {
-    quantize_lanes(c, max) as u16
+    quantize_scaled(c, max) as u16
+}
+
+/// [`quantize_lanes`] of one `f32`, truncated: `⌊clamp(c, 0, 1)·max + ½⌋` for an integer
+/// `max` in `[1, 2²⁴]`, computed as `min(⌊c·max + ½⌋, max)` with the saturating `as u32`
+/// (negative values and NaN give 0, `+∞` gives `u32::MAX`). The same value for every `c`:
+/// inside `(0, 1)` the float operations are the same; rounding is monotonic, so `c ≥ 1`
+/// gives `c·max + ½ ≥ max + ½` and `c ≤ 0` gives `c·max + ½ ≤ ½`. A single-lane path clamps
+/// so, after one float-to-integer conversion, instead of with two float compares and
+/// selects: several instructions each on a core without `VSEL`, a call each in soft float.
+#[inline(always)]
+pub(crate) fn quantize_scaled(c: f32, max: f32) -> u32 {
+    ((c * max + 0.5) as u32).min(max as u32)
 }
 
 /// The fixed-point twin of [`quantize`]: `⌊clamp(v, 0, 1)·max + ½⌋` for `v` in unsigned
@@ -339,6 +351,41 @@ pub fn encode_levels(
 mod tests {
     extern crate std;
     use super::*;
+
+    /// `quantize_scaled` (clamp after the conversion) against the rule as the wide lanes
+    /// compute it (`quantize_lanes`: clamp first, then truncate), for every format's `max`,
+    /// on the special values and on every 4099th bit pattern of `f32` (about a million).
+    #[test]
+    fn quantize_scaled_is_the_rule_for_every_f32() {
+        let special = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.0,
+            f32::MIN_POSITIVE,
+            f32::from_bits(1),
+            1.0 - f32::EPSILON / 2.0,
+            1.0 + f32::EPSILON,
+            f32::MAX,
+            f32::MIN,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+            f32::NAN,
+            -f32::NAN,
+        ];
+        let sweep = (0..=u32::MAX / 4099).map(|i| f32::from_bits(i * 4099));
+        for max in [1.0, 31.0, 63.0, 255.0, 65535.0, 65536.0] {
+            for c in special.into_iter().chain(sweep.clone()) {
+                let rule = quantize_lanes(c, max) as u32;
+                assert_eq!(
+                    quantize_scaled(c, max),
+                    rule,
+                    "c = {c:e} ({:#x}), max = {max}",
+                    c.to_bits()
+                );
+            }
+        }
+    }
 
     #[test]
     fn srgb_table_matches_the_formula() {

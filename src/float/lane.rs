@@ -20,6 +20,7 @@
 //! one). The one transcendental the kernel needs, the specular `pow`, is built from these
 //! primitives in `math`, once, for every width.
 
+use crate::encoding::{quantize_lanes, quantize_scaled};
 use crate::real::{bool_mask_methods, Real};
 use core::marker::PhantomData;
 use core::ops::{Add, Div, Mul, Neg, Sub};
@@ -41,6 +42,13 @@ pub trait Lane: Real {
     /// Each lane truncated toward zero to an integer, padded with zeros to 8. Lanes must hold
     /// values in `i32` range (the encode step passes `[0.5, 65536.5]`).
     fn trunc_lanes(self) -> [i32; 8];
+    /// Each lane's level `⌊clamp(c, 0, 1)·max + ½⌋` (the rule of
+    /// [`quantize`](crate::encoding::quantize)), padded with zeros to 8, for an integer `max`
+    /// in `[1, 2²⁴]`.
+    #[inline(always)]
+    fn quantize_lanes(self, max: f32) -> [i32; 8] {
+        quantize_lanes(self, max).trunc_lanes()
+    }
     /// Lane `i`'s value (`i` taken modulo the lane count).
     #[inline(always)]
     fn lane(self, i: usize) -> f32 {
@@ -75,6 +83,10 @@ impl Lane for f32 {
     #[inline(always)]
     fn trunc_lanes(self) -> [i32; 8] {
         [self as i32, 0, 0, 0, 0, 0, 0, 0]
+    }
+    #[inline(always)]
+    fn quantize_lanes(self, max: f32) -> [i32; 8] {
+        [quantize_scaled(self, max) as i32, 0, 0, 0, 0, 0, 0, 0]
     }
     #[inline(always)]
     fn bitmask(mask: bool) -> u32 {
@@ -205,6 +217,10 @@ impl<Q: SquareRoot> Lane for Rooted<Q> {
     #[inline(always)]
     fn trunc_lanes(self) -> [i32; 8] {
         self.0.trunc_lanes()
+    }
+    #[inline(always)]
+    fn quantize_lanes(self, max: f32) -> [i32; 8] {
+        self.0.quantize_lanes(max)
     }
     #[inline(always)]
     fn bitmask(mask: bool) -> u32 {

@@ -14,7 +14,7 @@
 use super::kernel::Packet;
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared};
-use crate::encoding::{linear_code, luma, quantize_lanes, Encoding};
+use crate::encoding::{linear_code, luma, Encoding};
 use crate::pixel::{pixel_from_codes, HitRecord, LinearRgb, Pixel, Shade};
 use crate::render::{check_segment, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
@@ -134,7 +134,7 @@ impl<const S: usize> Candidates<S> {
 /// first pixel is `(x0, y)`.
 ///
 /// With [`Encoding::LINEAR`], formats with levels are quantized a packet at a time with
-/// [`quantize_lanes`], the rule of [`quantize`](crate::encoding::quantize) (clamp with NaN to
+/// [`Lane::quantize_lanes`], the rule of [`quantize`](crate::encoding::quantize) (clamp with NaN to
 /// 0, `c·max + ½`, truncate; [`Gray8`](crate::Gray8) on the [`luma`]), so every width stores
 /// the bits the scalar path stores. Other encodings compute the linear codes a packet at a
 /// time ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
@@ -151,24 +151,24 @@ fn store_packet<P: Pixel, T: Lane>(
     if let Some(max) = P::LEVELS {
         if encoding.is_default() {
             if P::GRAY {
-                let l = quantize_lanes(luma([c.x, c.y, c.z]), max[0] as f32).trunc_lanes();
+                let l = luma([c.x, c.y, c.z]).quantize_lanes(max[0] as f32);
                 for (px, l) in chunk.iter_mut().zip(&l) {
                     *px = P::from_levels([*l as u16; 3]);
                 }
                 return;
             }
-            let r = quantize_lanes(c.x, max[0] as f32).trunc_lanes();
-            let g = quantize_lanes(c.y, max[1] as f32).trunc_lanes();
-            let b = quantize_lanes(c.z, max[2] as f32).trunc_lanes();
+            let r = c.x.quantize_lanes(max[0] as f32);
+            let g = c.y.quantize_lanes(max[1] as f32);
+            let b = c.z.quantize_lanes(max[2] as f32);
             for (px, ((r, g), b)) in chunk.iter_mut().zip(r.iter().zip(&g).zip(&b)) {
                 *px = P::from_levels([*r as u16, *g as u16, *b as u16]);
             }
             return;
         }
         // Linear codes, `⌊clamp(c)·65536 + ½⌋`, then the encoding's integer rule per pixel.
-        let r = quantize_lanes(c.x, 65536.0).trunc_lanes();
-        let g = quantize_lanes(c.y, 65536.0).trunc_lanes();
-        let b = quantize_lanes(c.z, 65536.0).trunc_lanes();
+        let r = c.x.quantize_lanes(65536.0);
+        let g = c.y.quantize_lanes(65536.0);
+        let b = c.z.quantize_lanes(65536.0);
         let codes = r.iter().zip(&g).zip(&b);
         for ((px, ((r, g), b)), x) in chunk.iter_mut().zip(codes).zip(x0..) {
             if let Some(p) = pixel_from_codes([*r as u32, *g as u32, *b as u32], encoding, x, y) {
