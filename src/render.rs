@@ -79,8 +79,8 @@ pub enum RenderError {
         /// The field's name, as spelled in the scene file.
         field: &'static str,
     },
-    /// A sphere's model has no fixed-point implementation yet (Oren–Nayar and GGX render on
-    /// the float paths only); only [`PreparedFixed::new`](crate::PreparedFixed::new) returns
+    /// A sphere's model has no fixed-point implementation yet (GGX renders on the float
+    /// paths only); only [`PreparedFixed::new`](crate::PreparedFixed::new) returns
     /// it, and only with the feature `models` (without it no scene holds such a sphere:
     /// [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
     ModelNotOnFixedPath {
@@ -129,8 +129,8 @@ impl fmt::Display for RenderError {
             ),
             RenderError::ModelNotOnFixedPath { item } => write!(
                 f,
-                "{item}: `model` has no fixed-point implementation (oren-nayar and ggx render \
-                 on the float paths)"
+                "{item}: `model` has no fixed-point implementation (ggx renders on the float \
+                 paths)"
             ),
             RenderError::SphereLight { light } => write!(
                 f,

@@ -342,7 +342,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         } else {
             ONE
         };
-        let lit = (mul_uu(n_dot_l, diffuse_scale) >> 30) as u32; // U2F30
+        // The diffuse lobe times N·L: Lambert's N·L, or Oren–Nayar's (below 1.45).
+        #[cfg(feature = "models")]
+        let n_dot_l_diffuse = match s.oren_nayar {
+            Some([a, b]) => oren_nayar(a, b, n_dot_l, n, l, d),
+            None => n_dot_l,
+        };
+        #[cfg(not(feature = "models"))]
+        let n_dot_l_diffuse = n_dot_l;
+        let lit = (mul_uu(n_dot_l_diffuse, diffuse_scale) >> 30) as u32; // U2F30
         let spec = (mul_uu(sum, n_dot_l) >> 30) as u32; // U16F16, ≤ sum
         let diffuse = incoming
             .arriving
@@ -400,6 +408,30 @@ fn lobe_h(
         let m = c.unsigned_abs().min(u32::MAX as u64) as u32;
         acc.saturating_add(mul_uu(m, m))
     }))
+}
+
+/// Oren–Nayar's diffuse factor times `N·L`, U2F30, the integer form of
+/// [`crate::brdf::oren_nayar`]: `A·(N·L) + B·max(0, s)·(N·L/max(N·L, N·V))` with
+/// `s = L·V − (N·L)(N·V)` and `V = −d`, for `A`, `B` and `N·L > 0` in U2F30. The ratio is 1
+/// where `N·L ≥ N·V` and otherwise one 64-bit division, exact to the last of its 30 bits:
+/// the only division of the fixed kernel, and only for Oren–Nayar spheres.
+#[cfg(feature = "models")]
+#[inline(always)]
+fn oren_nayar(a: u32, b: u32, n_dot_l: u32, n: V3<Unit>, l: V3<Unit>, d: V3<Unit>) -> u32 {
+    const ONE: u32 = 1 << 30;
+    let v = d.map(|c| c.saturating_neg());
+    let n_dot_v = dot_unit(n, v).clamp(0, ONE as i64) as u32;
+    let l_dot_v = dot_unit(l, v);
+    // s = sin θ_i·sin θ_r·cos Δφ ≤ 1.
+    let s = (l_dot_v - (mul_uu(n_dot_l, n_dot_v) >> 30) as i64).clamp(0, ONE as i64) as u32;
+    let ratio = if n_dot_l >= n_dot_v {
+        ONE
+    } else {
+        // N·V > N·L ≥ 0, so the quotient is below 2³⁰ and the divisor not 0.
+        (((n_dot_l as u64) << 30).checked_div(n_dot_v as u64)).unwrap_or(0) as u32
+    };
+    let rough = (mul_uu((mul_uu(b, s) >> 30) as u32, ratio) >> 30) as u32;
+    ((mul_uu(a, n_dot_l) >> 30) as u32).saturating_add(rough)
 }
 
 /// `acc += v` per channel, saturating.

@@ -66,7 +66,10 @@
 //! normalized models' work (`N·L` scaling, Fresnel, more lobes). The models' budget against
 //! the reference is tested in `tests/models_agree.rs`.
 //!
-//! Oren–Nayar and GGX are not implemented here yet: a scene with such a sphere is refused
+//! Oren–Nayar (feature `models`) is the normalized terms with the diffuse factor
+//! `A·(N·L) + B·max(0, s)·(N·L/max(N·L, N·V))` in U2F30, `A` and `B` converted from the float
+//! paths' constants; its ratio is one 64-bit division where `N·V > N·L`, the only division
+//! in the kernel. GGX is not implemented here yet: a scene with such a sphere is refused
 //! (below), so the fixed path never renders a model it does not have.
 //!
 //! # Refused scenes
@@ -76,7 +79,7 @@
 //! extent, [`MIN_SCALED_RADIUS`] after scaling), `vfov` (`tan(vfov/2)·max(1, w/h)` above
 //! [`MAX_PLANE_SCALE`]), `albedo`/`kd`/`ks`/`color`/`intensity` (a channel of `albedo`,
 //! `kd·albedo`, `ks`, a distant light's colour or `colour·intensity` above [`MAX_LEVEL`]).
-//! A sphere whose model is Oren–Nayar or GGX is refused with
+//! A sphere whose model is GGX is refused with
 //! [`RenderError::ModelNotOnFixedPath`](crate::RenderError) naming the sphere (with the
 //! feature `models`; without it the scene itself refuses such a sphere, so the check is left
 //! out).
@@ -88,15 +91,15 @@
 //! `oc × D` and `oc·D` advanced by one addition per pixel, about a dozen `MULS` for the
 //! normal, two table-and-Newton inverse square roots, and the full-width kernel below only
 //! for the pixels whose lobe needs its precision (the bright part of a narrow highlight). On
-//! the exponent series at 320×240 (`.ci/firmware`) a frame takes 12.7 M instructions on the
-//! Cortex-M0, 9.2 M on the Cortex-M4F and 9.6 M on the RV32IMAC, with the same bits on all
+//! the exponent series at 320×240 (`.ci/firmware`) a frame takes 11.0 M instructions on the
+//! Cortex-M0, 8.1 M on the Cortex-M4F and 8.6 M on the RV32IMAC, with the same bits on all
 //! three; 1.16 sphere-pixels are tested per covered pixel (`spans`).
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
 //! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against
 //! the sphere itself (three products when the ray leaves its lit side) and each sphere the
 //! prepare found can cast a shadow on it ([`Scene::shadow_casters`](crate::Scene)), and
-//! about twelve products for the lobe. No division anywhere per pixel. On ARMv6-M (Cortex-M0,
+//! about twelve products for the lobe. No division per pixel except Oren–Nayar's ratio. On ARMv6-M (Cortex-M0,
 //! RP2040), whose multiplier is 32×32→32 and which has no `CLZ`, `mul` builds each product
 //! from four 16×16 `MULS` inline and counts leading zeros by a binary search, instead of
 //! calls to `__aeabi_lmul` and `__clzsi2`.

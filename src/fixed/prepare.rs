@@ -145,6 +145,9 @@ pub(crate) struct FixedSphere {
     pub f0: [u32; 3],
     /// The screen rectangle, or `None` if the sphere is off screen.
     pub bounds: Option<Bounds>,
+    /// Oren–Nayar's `A` and `B` (U2F30), if the diffuse lobe is Oren–Nayar's.
+    #[cfg(feature = "models")]
+    pub oren_nayar: Option<[u32; 2]>,
 }
 
 /// A light's per-frame constants.
@@ -363,9 +366,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         for (i, s) in scene.spheres().iter().enumerate() {
             let item = Item::Sphere(i);
             let m = &s.material;
-            // Without the feature `models` no scene holds these models (it refuses them).
+            // Without the feature `models` no scene holds this model (it refuses it).
             #[cfg(feature = "models")]
-            if matches!(m.model, Model::OrenNayar { .. } | Model::Ggx(_)) {
+            if matches!(m.model, Model::Ggx(_)) {
                 return Err(RenderError::ModelNotOnFixedPath { item });
             }
             let center = to_len(s.center, scale, item, "center")?;
@@ -400,6 +403,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 diffuse_loss: params.diffuse_loss > 0.0,
                 bounds: view.bounds(s.center, s.radius),
                 narrow: None,
+                #[cfg(feature = "models")]
+                oren_nayar: (params.oren_nayar > 0.0)
+                    .then(|| [unit(params.on_a), unit(params.on_b)]),
             };
             // Same capacity as the scene: cannot fail.
             let pushed = self.spheres.push(sphere);
