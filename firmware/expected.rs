@@ -39,3 +39,9 @@ pub const FIXED_COVERED: u64 = 11_839;
 pub const MICROFACETS_SCALAR_RGB565_CRC32: u32 = 0x9be3_dc87;
 /// Pixels of that frame whose primary ray hits a sphere.
 pub const MICROFACETS_SCALAR_COVERED: u64 = 38_796;
+
+/// CRC32 of the microfacet gallery at 320×240 rendered by `PreparedFixed` into `Rgb565`: the
+/// M4F firmware's `fixed-microfacets` run (feature `microfacets`; reported, not budgeted).
+pub const MICROFACETS_FIXED_RGB565_CRC32: u32 = 0x0227_dcea;
+/// Pixels of that frame whose primary ray hits a sphere on the fixed path.
+pub const MICROFACETS_FIXED_COVERED: u64 = 38_796;

@@ -80,8 +80,7 @@
 //! `kd·albedo` and `ks` once per pixel. For the classic models `terms` computes only
 //! `max(0, N·L)` and the one lobe, nothing else. [`value`] is `f` itself, from the same
 //! `terms`, for the law tests. The fixed-point path mirrors
-//! these formulas in integers (see `src/fixed/mod.rs`), except GGX, which it refuses for
-//! now; the `f64` [`reference`](crate::reference) implements every model again,
+//! these formulas in integers (see `src/fixed/mod.rs`); the `f64` [`reference`](crate::reference) implements every model again,
 //! independently (Oren–Nayar from the angles themselves, GGX in its `tan θ` form). A packet
 //! computes the Oren–Nayar and GGX terms only when one of its lanes shows such a material
 //! ([`Present`]), so frames without them run the same arithmetic as before they existed.

@@ -79,14 +79,6 @@ pub enum RenderError {
         /// The field's name, as spelled in the scene file.
         field: &'static str,
     },
-    /// A sphere's model has no fixed-point implementation yet (GGX renders on the float
-    /// paths only); only [`PreparedFixed::new`](crate::PreparedFixed::new) returns
-    /// it, and only with the feature `models` (without it no scene holds such a sphere:
-    /// [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
-    ModelNotOnFixedPath {
-        /// The sphere.
-        item: Item,
-    },
     /// A point light has a radius (a sphere light): the float and fixed paths render point
     /// lights of radius 0 only; the `f64` [`reference`](crate::reference) renders sphere
     /// lights.
@@ -126,11 +118,6 @@ impl fmt::Display for RenderError {
             RenderError::OutOfFixedRange { item, field } => write!(
                 f,
                 "{item}: `{field}` does not fit the fixed-point path's number formats"
-            ),
-            RenderError::ModelNotOnFixedPath { item } => write!(
-                f,
-                "{item}: `model` has no fixed-point implementation (ggx renders on the float \
-                 paths)"
             ),
             RenderError::SphereLight { light } => write!(
                 f,

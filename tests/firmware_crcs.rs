@@ -97,13 +97,23 @@ fn covered_counts_match_the_firmware_constants() {
 fn microfacet_gallery_crc_and_covered_count_match_the_firmware_constants() {
     let scene = microfacets().expect("built-in scene is valid");
     let path = Prepared::<Scalar>::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
-    let (crc, covered) = (rgb565_crc32(&frame(&path)), covered(&path));
+    let (crc, hits) = (rgb565_crc32(&frame(&path)), covered(&path));
     assert_eq!(
-        (crc, covered),
+        (crc, hits),
         (
             expected::MICROFACETS_SCALAR_RGB565_CRC32,
             expected::MICROFACETS_SCALAR_COVERED
         ),
-        "host microfacets CRC {crc:#010x}, covered {covered}: update firmware/expected.rs"
+        "host microfacets CRC {crc:#010x}, covered {hits}: update firmware/expected.rs"
+    );
+    let fixed = PreparedFixed::new(&scene, expected::WIDTH, expected::HEIGHT).unwrap();
+    let (crc, hits) = (rgb565_crc32(&frame(&fixed)), covered(&fixed));
+    assert_eq!(
+        (crc, hits),
+        (
+            expected::MICROFACETS_FIXED_RGB565_CRC32,
+            expected::MICROFACETS_FIXED_COVERED
+        ),
+        "host fixed microfacets CRC {crc:#010x}, covered {hits}: update firmware/expected.rs"
     );
 }

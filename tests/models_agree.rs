@@ -10,9 +10,9 @@
 //! (`common::random_scenes_all_models`). Oren–Nayar and GGX, on the float paths: bit
 //! identity across widths and scalar within one level of the reference, on the rough-models
 //! gallery and on 48 random scenes whose spheres are mostly those models
-//! (`common::random_scenes_rough_models`). Oren–Nayar on the fixed path too, within its
-//! budget, on the full moon and on the same random scenes with GGX spheres made Oren–Nayar;
-//! the fixed path refuses GGX with a typed error. Run with `-- --nocapture` for the tables.
+//! (`common::random_scenes_rough_models`); and the fixed path within its budget on the full
+//! moon, the rough-models gallery and the same random scenes. Run with `-- --nocapture` for
+//! the tables.
 
 mod common;
 use common::*;
@@ -197,70 +197,27 @@ fn random_rough_model_scenes_use_both_models_and_every_surface() {
 }
 
 #[test]
-fn the_fixed_path_refuses_ggx_only() {
-    let (mut refused, mut rendered) = (0, 0);
-    for scene in random_scenes_rough_models(16, 0x5eed_a122) {
-        let first = scene
-            .spheres()
-            .iter()
-            .position(|s| matches!(s.material.model, Model::Ggx(_)));
-        let got = PreparedFixed::<8, 4>::new(&scene, 32, 24).err();
-        let want = first.map(|i| RenderError::ModelNotOnFixedPath {
-            item: Item::Sphere(i),
-        });
-        assert_eq!(got, want, "{scene:?}");
-        match first {
-            Some(_) => refused += 1,
-            None => rendered += 1,
-        }
-    }
-    assert!(
-        refused > 0 && rendered > 0,
-        "{refused} refused, {rendered} rendered"
-    );
-}
-
-/// `scene` with every GGX sphere made Oren–Nayar, its roughness taken as `σ` in radians.
-fn ggx_made_oren_nayar(scene: &TestScene) -> TestScene {
-    let mut out = TestScene::new(*scene.camera(), scene.background()).unwrap();
-    for s in scene.spheres() {
-        let mut sphere = *s;
-        if let Model::Ggx(micro) = s.material.model {
-            sphere.material.model = Model::OrenNayar {
-                roughness: micro.roughness,
-            };
-        }
-        out.add_sphere(sphere).unwrap();
-    }
-    for l in scene.lights() {
-        out.add_light(*l).unwrap();
-    }
-    out
-}
-
-#[test]
-fn oren_nayar_on_the_fixed_path_matches_the_reference() {
+fn rough_models_on_the_fixed_path_match_the_reference() {
     let moon = full_moon().unwrap();
     let (w, h) = FULL_MOON_SIZE;
     println!("full moon {w}x{h}: fixed {:?}", check_fixed(&moon, w, h));
+    let gallery = microfacets().unwrap();
+    let (w, h) = MICROFACETS_SIZE;
+    println!(
+        "microfacets {w}x{h}: fixed {:?}",
+        check_fixed(&gallery, w, h)
+    );
     let (w, h) = (160, 120);
-    let (mut worst, mut within, mut differ, mut spheres) = (0, 1.0f64, 0.0f64, 0);
+    let (mut worst, mut within, mut differ) = (0, 1.0f64, 0.0f64);
     for scene in random_scenes_rough_models(48, 0x5eed_a121) {
-        let scene = ggx_made_oren_nayar(&scene);
-        spheres += scene
-            .spheres()
-            .iter()
-            .filter(|s| matches!(s.material.model, Model::OrenNayar { .. }))
-            .count();
         let a = check_fixed(&scene, w, h);
         worst = worst.max(a.max_levels);
         within = within.min(a.within_one_share());
         differ = differ.max(a.differ_share());
     }
-    assert!(spheres > 100, "{spheres} Oren–Nayar spheres");
     println!(
-        "48 Oren–Nayar scenes {w}x{h} ({spheres} Oren–Nayar spheres): fixed worst {worst} \
-         level(s), lowest within-one share {:.3}%, largest decisions-differ share {:.4}%",
+        "48 rough-model scenes {w}x{h}: fixed worst {worst} level(s), lowest within-one \
+         share {:.3}%, largest decisions-differ share {:.4}%",
         100.0 * within,
         100.0 * differ
     );

@@ -8,8 +8,7 @@
 //! widened spans hold every pixel an outline reaches.
 //!
 //! The fixed-point path, for scenes it accepts (it refuses the others with
-//! `OutOfFixedRange`, counted, or for Oren–Nayar and GGX spheres with
-//! `ModelNotOnFixedPath`), renders without a panic; on *well-conditioned*
+//! `OutOfFixedRange`, counted), renders without a panic; on *well-conditioned*
 //! scenes its 8-bit output is within [`FIXED_LEVELS`] levels of the scalar output on every
 //! pixel whose hit record agrees with the scalar one. Most pixels whose hit records differ
 //! lie on a *boundary*, where one of the pixel's eight neighbours has another hit record in
@@ -187,8 +186,6 @@ impl PathVisitor for Agree {
     fn visit<R: Render + Clone>(&mut self, name: &'static str, prepared: Result<R, RenderError>) {
         let frame = match prepared {
             Ok(frame) => frame,
-            // Oren–Nayar and GGX have no fixed-point implementation: not a refusal of range.
-            Err(RenderError::ModelNotOnFixedPath { .. }) if name == "fixed" => return,
             Err(RenderError::OutOfFixedRange { .. }) if name == "fixed" => {
                 if self.conditioned {
                     Counts::add(&COUNTS.refused, 1);

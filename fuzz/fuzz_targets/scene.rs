@@ -35,7 +35,6 @@ impl PathVisitor for Rows<'_> {
             Ok(frame) => frame,
             // A path with a narrower number range may refuse a scene, with its own error.
             Err(RenderError::OutOfFixedRange { .. }) if name == "fixed" => return,
-            Err(RenderError::ModelNotOnFixedPath { .. }) if name == "fixed" => return,
             Err(e) => panic!("{name}: a valid scene was refused: {e}"),
         };
         for y in self.rows {

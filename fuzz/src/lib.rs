@@ -13,8 +13,7 @@
 //!
 //! Every check is generic over [`Render`]; the paths are listed once, in [`for_each_path`],
 //! so a new path is one more line there. The fixed-point path is the one path allowed to
-//! refuse a valid scene (with `RenderError::OutOfFixedRange`, or
-//! `RenderError::ModelNotOnFixedPath` for GGX), and its linear output is
+//! refuse a valid scene (with `RenderError::OutOfFixedRange`), and its linear output is
 //! 16.16 fixed point, so a miss is the background quantized, not the background's bits.
 
 use arbitrary::Arbitrary;

@@ -25,8 +25,12 @@
 //! can panic, in release or debug.
 
 use super::exact::shift_saturating;
+#[cfg(feature = "models")]
+use super::mul::leading_zeros;
 use super::mul::{mul_ii, mul_iu, mul_uu};
 use super::pow::lobe;
+#[cfg(feature = "models")]
+use super::prepare::FixedGgx;
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{
@@ -308,11 +312,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if n_dot_l == 0 || l == [Unit::ZERO; 3] {
             return ([0; 3], [0; 3]);
         }
-        // H is needed by Blinn-Phong lobes and by Fresnel.
-        let half = (s.blinn || s.schlick).then(|| half_vector(l, d)).flatten();
-        // Σ wₖcₖ·lobeₖ in U16F16.
+        // H is needed by Blinn-Phong lobes, by Fresnel and by GGX.
+        let ggx = is_ggx(s);
+        let half = (s.blinn || s.schlick || ggx)
+            .then(|| half_vector(l, d))
+            .flatten();
+        // Σ wₖcₖ·lobeₖ in U16F16 (GGX has its own lobe, below).
         let mut sum = 0u32;
-        if let Some(h) = lobe_h(s.blinn, n, l, d, half) {
+        if let Some(h) = lobe_h(s.blinn, n, l, d, half).filter(|_| !ggx) {
             let exponents = [s.shininess, s.more_shininess[0], s.more_shininess[1]];
             for (w, e) in s.weight.iter().zip(exponents) {
                 if w.mantissa == 0 {
@@ -351,7 +358,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         #[cfg(not(feature = "models"))]
         let n_dot_l_diffuse = n_dot_l;
         let lit = (mul_uu(n_dot_l_diffuse, diffuse_scale) >> 30) as u32; // U2F30
-        let spec = (mul_uu(sum, n_dot_l) >> 30) as u32; // U16F16, ≤ sum
+                                                                         // U16F16: Σ wₖcₖ·lobeₖ·(N·L) (≤ sum), or GGX's ks·D·V₂·(N·L).
+        let spec = ggx_specular(s, n_dot_l, n, d, half)
+            .unwrap_or_else(|| (mul_uu(sum, n_dot_l) >> 30) as u32);
         let diffuse = incoming
             .arriving
             .map(|i| u32::try_from(mul_uu(i, lit) >> 30).unwrap_or(u32::MAX));
@@ -432,6 +441,129 @@ fn oren_nayar(a: u32, b: u32, n_dot_l: u32, n: V3<Unit>, l: V3<Unit>, d: V3<Unit
     };
     let rough = (mul_uu((mul_uu(b, s) >> 30) as u32, ratio) >> 30) as u32;
     ((mul_uu(a, n_dot_l) >> 30) as u32).saturating_add(rough)
+}
+
+/// Whether sphere `s` has a GGX lobe.
+#[inline(always)]
+fn is_ggx(s: &FixedSphere) -> bool {
+    #[cfg(feature = "models")]
+    {
+        s.ggx.is_some()
+    }
+    #[cfg(not(feature = "models"))]
+    {
+        let _ = s;
+        false
+    }
+}
+
+/// GGX's specular term times `N·L` in U16F16, saturating, for a GGX sphere (`None` for the
+/// others): `ks·D(H)·V₂(L, V)·(N·L)`, the integer form of [`crate::brdf::ggx`], for
+/// `N·L > 0` (U2F30) and `half` the unit `H` (none where `L = −V`: 0).
+///
+/// `D·V₂·(N·L) = ks·α²/(2π) · (N·L) / (q²·den)` with `q = α²(N·H)² + |N × H|²` and
+/// `den = (N·L)·Λ(N·V) + (N·V)·Λ(N·L)`, `Λ(x) = √(x²(1 − α²) + α²)`: `q` and `den` in F60
+/// from 30-bit components (`|N × H|²` from the cross product keeps its relative precision
+/// at the peak, where `q` falls to `α²`), their reciprocals from [`inv_sqrt`] squared, and
+/// the product of the four factors in [`Wide`]: the term spans from 0 to about
+/// `1/(2πα³)` (10⁷ at the smallest roughness), beyond any one fixed format, and saturates
+/// only where it exceeds U16F16.
+#[inline(always)]
+fn ggx_specular(
+    s: &FixedSphere,
+    n_dot_l: u32,
+    n: V3<Unit>,
+    d: V3<Unit>,
+    half: Option<V3<Unit>>,
+) -> Option<u32> {
+    #[cfg(feature = "models")]
+    {
+        let g = s.ggx.as_ref()?;
+        Some(ggx_term(g, n_dot_l, n, d, half))
+    }
+    #[cfg(not(feature = "models"))]
+    {
+        let _ = (s, n_dot_l, n, d, half);
+        None
+    }
+}
+
+/// The body of [`ggx_specular`].
+#[cfg(feature = "models")]
+#[inline(always)]
+fn ggx_term(g: &FixedGgx, n_dot_l: u32, n: V3<Unit>, d: V3<Unit>, half: Option<V3<Unit>>) -> u32 {
+    const ONE: u32 = 1 << 30;
+    let Some(h) = half else {
+        return 0;
+    };
+    let n_dot_h = dot_unit(n, h);
+    if n_dot_h <= 0 {
+        return 0;
+    }
+    let c = n_dot_h.min(ONE as i64) as u32; // F30
+    let n_dot_v = dot_unit(n, d.map(|x| x.saturating_neg())).clamp(0, ONE as i64) as u32;
+    let (nb, hb) = (n.map(|x| x.to_bits()), h.map(|x| x.to_bits()));
+    // N × H in F60 (each component below 2⁶¹), then |N × H|² in F60 from its F30 components.
+    let cross = [
+        mul_ii(nb[1], hb[2]) - mul_ii(nb[2], hb[1]),
+        mul_ii(nb[2], hb[0]) - mul_ii(nb[0], hb[2]),
+        mul_ii(nb[0], hb[1]) - mul_ii(nb[1], hb[0]),
+    ];
+    let sin2 = cross.iter().fold(0u64, |acc, &x| {
+        let m = (x >> 30).unsigned_abs().min(u32::MAX as u64) as u32;
+        acc.saturating_add(mul_uu(m, m))
+    });
+    // F60 × U1F31 (through F31 × F31 = F62).
+    let times = |x60: u64, f31: u32| mul_uu((x60 >> 29).min(u32::MAX as u64) as u32, f31) >> 2;
+    let q = times(mul_uu(c, c), g.alpha2).saturating_add(sin2);
+    let lambda = |x: u32| {
+        let l2 = times(mul_uu(x, x), g.one_minus_alpha2) + ((g.alpha2 as u64) << 29);
+        sqrt(l2).min(u32::MAX as u64) as u32 // F30
+    };
+    let den = mul_uu(n_dot_l, lambda(n_dot_v)) + mul_uu(n_dot_v, lambda(n_dot_l)); // F60
+    let (Some((yq, sq)), Some((yd, sd))) = (inv_sqrt(q), inv_sqrt(den)) else {
+        return 0;
+    };
+    // 1/x = y²·2^(60 − 2·shift) for x in F60 with 1/√x_raw = y·2^-shift.
+    let inv_q = Wide::new(mul_uu(yq, yq), 60 - 2 * sq as i32);
+    let inv_den = Wide::new(mul_uu(yd, yd), 60 - 2 * sd as i32);
+    let term = Wide::new(g.scale.mantissa as u64, g.scale.exponent)
+        .mul(Wide::new(n_dot_l as u64, -30))
+        .mul(inv_q)
+        .mul(inv_q)
+        .mul(inv_den);
+    shift_saturating(term.m as u64, term.e + 16)
+}
+
+/// `m·2^e` with `m` normalized to its top bit (0 is `m = 0`): products of factors whose
+/// range no fixed format holds, to 31 bits, rounded toward zero.
+#[cfg(feature = "models")]
+#[derive(Clone, Copy)]
+struct Wide {
+    m: u32,
+    e: i32,
+}
+
+#[cfg(feature = "models")]
+impl Wide {
+    /// `v·2^e`, rounded toward zero to 32 significant bits.
+    #[inline(always)]
+    fn new(v: u64, e: i32) -> Wide {
+        if v == 0 {
+            return Wide { m: 0, e: 0 };
+        }
+        let lz = leading_zeros(v);
+        Wide {
+            m: ((v << lz) >> 32) as u32,
+            e: e + 32 - lz as i32,
+        }
+    }
+
+    /// The product, rounded toward zero.
+    #[inline(always)]
+    fn mul(self, o: Wide) -> Wide {
+        Wide::new(mul_uu(self.m, o.m), self.e + o.e)
+    }
 }
 
 /// `acc += v` per channel, saturating.

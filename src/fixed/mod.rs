@@ -69,8 +69,12 @@
 //! Oren–Nayar (feature `models`) is the normalized terms with the diffuse factor
 //! `A·(N·L) + B·max(0, s)·(N·L/max(N·L, N·V))` in U2F30, `A` and `B` converted from the float
 //! paths' constants; its ratio is one 64-bit division where `N·V > N·L`, the only division
-//! in the kernel. GGX is not implemented here yet: a scene with such a sphere is refused
-//! (below), so the fixed path never renders a model it does not have.
+//! in the kernel. GGX (feature `models`) replaces the lobes' sum with `ks·D(H)·V₂(L, V)·(N·L)`:
+//! `D` and `V₂` from F60 sums of squares (`|N × H|²` from the cross product, which keeps
+//! its relative precision at the peak), two reciprocals from `inv_sqrt` squared, and their
+//! product as a 32-bit mantissa and a power of two, since the term spans seven decades;
+//! saturated into U16F16 like the other lobes. Fresnel and the diffuse lobe are the
+//! normalized models' own.
 //!
 //! # Refused scenes
 //!
@@ -79,10 +83,6 @@
 //! extent, [`MIN_SCALED_RADIUS`] after scaling), `vfov` (`tan(vfov/2)·max(1, w/h)` above
 //! [`MAX_PLANE_SCALE`]), `albedo`/`kd`/`ks`/`color`/`intensity` (a channel of `albedo`,
 //! `kd·albedo`, `ks`, a distant light's colour or `colour·intensity` above [`MAX_LEVEL`]).
-//! A sphere whose model is GGX is refused with
-//! [`RenderError::ModelNotOnFixedPath`](crate::RenderError) naming the sphere (with the
-//! feature `models`; without it the scene itself refuses such a sphere, so the check is left
-//! out).
 //!
 //! # Costs
 //!

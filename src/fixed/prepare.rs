@@ -18,8 +18,6 @@ use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
 use crate::brdf::{Params, LOBES};
 use crate::render::RenderError;
-#[cfg(feature = "models")]
-use crate::scene::Model;
 use crate::scene::{Item, Light, Scene, MORE_LOBES};
 use crate::vec3::Vec3;
 use crate::MAX_DIMENSION;
@@ -148,6 +146,21 @@ pub(crate) struct FixedSphere {
     /// Oren–Nayar's `A` and `B` (U2F30), if the diffuse lobe is Oren–Nayar's.
     #[cfg(feature = "models")]
     pub oren_nayar: Option<[u32; 2]>,
+    /// GGX's constants, if the specular lobe is GGX.
+    #[cfg(feature = "models")]
+    pub ggx: Option<FixedGgx>,
+}
+
+/// A GGX sphere's constants (`α = roughness²`).
+#[cfg(feature = "models")]
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FixedGgx {
+    /// `α²`, U1F31.
+    pub alpha2: u32,
+    /// `1 − α²`, U1F31.
+    pub one_minus_alpha2: u32,
+    /// `ks·α²/(2π)`, the `f32` value exactly.
+    pub scale: Exact,
 }
 
 /// A light's per-frame constants.
@@ -366,11 +379,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         for (i, s) in scene.spheres().iter().enumerate() {
             let item = Item::Sphere(i);
             let m = &s.material;
-            // Without the feature `models` no scene holds this model (it refuses it).
-            #[cfg(feature = "models")]
-            if matches!(m.model, Model::Ggx(_)) {
-                return Err(RenderError::ModelNotOnFixedPath { item });
-            }
             let center = to_len(s.center, scale, item, "center")?;
             let radius = Len::checked_from_num(s.radius * scale)
                 .filter(|r| *r >= MIN_SCALED_RADIUS)
@@ -406,6 +414,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 #[cfg(feature = "models")]
                 oren_nayar: (params.oren_nayar > 0.0)
                     .then(|| [unit(params.on_a), unit(params.on_b)]),
+                #[cfg(feature = "models")]
+                ggx: (params.ggx > 0.0).then(|| {
+                    let u1f31 = |v: f32| (v.clamp(0.0, 1.0) * (1u64 << 31) as f32) as u32;
+                    FixedGgx {
+                        alpha2: u1f31(params.alpha2),
+                        one_minus_alpha2: u1f31(1.0 - params.alpha2),
+                        scale: Exact::from_f32(
+                            params.weight[0] * params.alpha2 / (2.0 * core::f32::consts::PI),
+                        ),
+                    }
+                }),
             };
             // Same capacity as the scene: cannot fail.
             let pushed = self.spheres.push(sphere);

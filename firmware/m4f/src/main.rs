@@ -8,8 +8,8 @@
 //! default [`Scalar`], is reported too (`scalar-libm`). With the feature
 //! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
 //! (`scalar-aa`); with the feature `microfacets`, it also renders the microfacet gallery
-//! (`scalar-microfacets`: GGX and Oren–Nayar spheres next to normalized Blinn-Phong and
-//! Lambert ones).
+//! (GGX and Oren–Nayar spheres next to normalized Blinn-Phong and Lambert ones) on the
+//! scalar and the fixed path (`scalar-microfacets`, `fixed-microfacets`).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -83,6 +83,8 @@ fn main() -> ! {
     static mut MICRO_SCENE: Option<Scene> = None;
     #[cfg(feature = "microfacets")]
     static mut MICRO: Option<Prepared<M4fScalar>> = None;
+    #[cfg(feature = "microfacets")]
+    static mut MICRO_FIXED: PreparedFixed = PreparedFixed::EMPTY;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -141,6 +143,22 @@ fn main() -> ! {
                 covered: common::expected::MICROFACETS_SCALAR_COVERED,
             },
         );
+        match session.build_in(MICRO_FIXED, |f| f.prepare(micro, WIDTH, HEIGHT)) {
+            (Some(path), prepare) => session.run(
+                "fixed-microfacets",
+                path,
+                Sink::Frame(FRAME),
+                prepare,
+                Expected {
+                    crc: common::expected::MICROFACETS_FIXED_RGB565_CRC32,
+                    covered: common::expected::MICROFACETS_FIXED_COVERED,
+                },
+            ),
+            (None, _) => {
+                session.note("shadeline-fw error=prepare-fixed-microfacets\n");
+                session.fail();
+            }
+        }
     }
     match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
         (Some(path), prepare) => session.run(
