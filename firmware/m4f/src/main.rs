@@ -68,6 +68,8 @@ const SYSCLK_HZ: u32 = 25_000_000;
 
 const PIXELS: usize = (WIDTH * HEIGHT) as usize;
 
+// `#[entry]` passes each `static mut` below to the real entry function as an argument.
+#[allow(clippy::too_many_arguments)]
 #[entry]
 fn main() -> ! {
     // cortex-m-rt turns these into `&'static mut`s owned by `main`, no unsafe: one
