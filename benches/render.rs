@@ -1,4 +1,6 @@
-//! Criterion benchmarks of the float paths, single thread, reported as Mpix/s.
+//! Criterion benchmarks of the float paths, single thread, reported as Mpix/s; the fixed
+//! path only in `model/*` and `frame/microfacets` (its costs on the MCUs are QEMU counts,
+//! `.ci/firmware`).
 //!
 //! - `frame/*`: the exponent series at 320×240 and 1024×747, every width, with and without
 //!   scanline spans (without spans is the naive renderer: every sphere at every pixel), and
@@ -8,7 +10,8 @@
 //! - `lights/*`, `spheres/*`, `size/*`: how cost scales with lights, spheres and pixels.
 //! - `model/*`: the covered frame of `kernel/*` with its one sphere in each reflection model
 //!   (classic Phong, normalized Blinn-Phong with Fresnel, Oren–Nayar, GGX plastic, GGX gold),
-//!   two lights; and `frame/microfacets`, the microfacet gallery.
+//!   two lights; and `frame/microfacets`, the microfacet gallery; each on the fixed path
+//!   too (`fixed`).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use shadeline::*;
@@ -51,6 +54,24 @@ fn bench_paths<const S: usize, const L: usize>(
         .with_antialiasing(antialias);
     g.bench_function(BenchmarkId::new("simd8", id), |b| {
         b.iter(|| render(&simd8, &mut buf))
+    });
+    g.finish();
+}
+
+/// The fixed path's frame of `scene`, in `group` next to the float paths' figures.
+fn bench_fixed<const S: usize, const L: usize>(
+    c: &mut Criterion,
+    group: &str,
+    scene: &Scene<S, L>,
+    (w, h): (u32, u32),
+    id: &str,
+) {
+    let mut g = c.benchmark_group(group);
+    g.throughput(Throughput::Elements(w as u64 * h as u64));
+    let mut buf = vec![Rgb888::default(); w as usize * h as usize];
+    let fixed = PreparedFixed::<S, L>::new(scene, w, h).unwrap();
+    g.bench_function(BenchmarkId::new("fixed", id), |b| {
+        b.iter(|| render(&fixed, &mut buf))
     });
     g.finish();
 }
@@ -260,6 +281,7 @@ fn benches(c: &mut Criterion) {
             name,
             (true, false),
         );
+        bench_fixed(c, "model", &covered_in(material), (320, 240), name);
     }
     bench_paths(
         c,
@@ -268,6 +290,13 @@ fn benches(c: &mut Criterion) {
         (320, 160),
         "320x160",
         (true, false),
+    );
+    bench_fixed(
+        c,
+        "frame/microfacets",
+        &microfacets().unwrap(),
+        (320, 160),
+        "320x160",
     );
 }
 
