@@ -26,10 +26,12 @@
 //!
 //! With `D` the unnormalized primary direction, `oc = eye − centre` and `r` the radius:
 //!
-//! - `w = oc × D` and `b = oc·D` are linear along a row, so they advance by one exact
-//!   64-bit addition per pixel (`D` is an integer vector that advances by an integer step,
-//!   so no rounding accumulates: a pixel's values do not depend on where its run or
-//!   segment starts);
+//! - `w = oc × D` and `b = oc·D` are linear along a row: `w` advances by one exact 64-bit
+//!   addition per pixel (`D` is an integer vector that advances by an integer step, so no
+//!   rounding accumulates: a pixel's values do not depend on where its run or segment
+//!   starts), and the columns where `b < 0` are one interval, found once per run, to which
+//!   the sphere's span is narrowed (`b` itself is only computed again where two hits on one
+//!   pixel are compared);
 //! - `σ = |D₀|/|D|` (from `1/√|D|²`, see [`rsqrt`]) scales everything to unit length:
 //!   `D̂ = D·σ/|D₀|` and `u = w·σ/(r·|D₀|) = (oc × D̂)/r`, both Q15;
 //! - the ray hits the sphere iff `b < 0` (it is in front) and `|u| ≤ 1`. Then
@@ -98,16 +100,17 @@ pub(crate) enum Narrow {
 
 /// One sphere along a run: its values at column `max(x, span.start)` of the run's current
 /// column `x`, and what the hot loop needs of its constants.
+///
+/// `span` is the part of the sphere's span on the row where `b = oc·D` is negative (the
+/// sphere is in front along the ray): `b` is linear along the row, so that part is one
+/// interval, found once per run, and the hot loop neither advances `b` nor tests its sign.
 #[derive(Clone, Copy)]
 struct Track {
     index: usize,
     span: Span,
     /// `oc × D`, held shifted left by the sphere's `left`.
     w: V3<i64>,
-    /// `oc·D`.
-    b: i64,
     dw: V3<i64>,
-    db: i64,
     right: u32,
     gain: u32,
 }
@@ -168,12 +171,11 @@ fn activity<const S: usize>(tracks: &[Track], x: u32) -> (heapless::Vec<u8, S>, 
     (active, changes_at)
 }
 
-/// A hit: the sphere, `u`, `N·V`, `b`, and `t` in raw I16F16 once two hits are compared.
+/// A hit: the sphere, `u`, `N·V`, and `t` in raw I16F16 once two hits are compared.
 struct Hit {
     index: usize,
     u: V3<i32>,
     nv: i32,
-    b: i64,
     t: Option<i64>,
 }
 
@@ -312,15 +314,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         each3(|i| view.forward[i] + dy * view.step_y[i] + dx * view.step_x[i])
     }
 
-    /// Sets `run` to the narrow state at the first pixel `x` of a run on row `y`, in place;
-    /// `false` (and `run` unchanged) if the frame does not use the narrow kernel. In place
-    /// because a run holds a track per sphere: at the default capacity about 1.4 KB, which a
-    /// returned value would cost a `memcpy` or two per run (10% of a frame on RV32).
+    /// Sets `run` to the narrow state at the first pixel `x` of a run on row `y` that ends
+    /// before column `end`, in place; `false` (and `run` unchanged) if the frame does not use
+    /// the narrow kernel. In place because a run holds a track per sphere: at the default
+    /// capacity about 1.4 KB, which a returned value would cost a `memcpy` or two per run
+    /// (10% of a frame on RV32). Only the spheres whose span meets the run get a track.
     #[inline(always)]
     pub(crate) fn narrow_run(
         &self,
         run: &mut NarrowRun<S>,
         x: u32,
+        end: u32,
         y: u32,
         spans: &[Option<Span>],
     ) -> bool {
@@ -332,11 +336,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let (Some(span), Some(n)) = (span, s.narrow.as_ref()) else {
                 continue;
             };
-            if span.end <= x {
+            if span.end <= x || end <= span.start {
                 continue;
             }
-            let d = Self::narrow_direction(view, x.max(span.start), y, self.width, self.height);
             let oc = s.eye_offset.map(|c| c.to_bits());
+            let b_at = |column| {
+                narrow_b(
+                    oc,
+                    Self::narrow_direction(view, column, y, self.width, self.height),
+                )
+            };
+            let Some(span) = front_part(x.max(span.start), span.end, n.b_rises, b_at) else {
+                continue;
+            };
+            let d = Self::narrow_direction(view, span.start, y, self.width, self.height);
             let cross = [
                 mul_ii(oc[1], d[2]) - mul_ii(oc[2], d[1]),
                 mul_ii(oc[2], d[0]) - mul_ii(oc[0], d[2]),
@@ -344,11 +357,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             ];
             let track = Track {
                 index,
-                span: *span,
+                span,
                 w: cross.map(|c| c << n.left),
-                b: mul_ii(oc[0], d[0]) + mul_ii(oc[1], d[1]) + mul_ii(oc[2], d[2]),
                 dw: n.dw,
-                db: n.db,
                 right: n.right,
                 gain: n.gain,
             };
@@ -376,7 +387,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 t.w[0] += t.dw[0];
                 t.w[1] += t.dw[1];
                 t.w[2] += t.dw[2];
-                t.b += t.db;
             }
         }
         run.x += 1;
@@ -428,9 +438,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 continue;
             };
             debug_assert!(t.span.start <= x && x < t.span.end);
-            if t.b >= 0 {
-                continue;
-            }
             let high = t.w.map(|c| (c >> 32) as i32 >> t.right);
             if (high[0].unsigned_abs() | high[1].unsigned_abs() | high[2].unsigned_abs()) >= 1 << 16
             {
@@ -450,16 +457,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 index: t.index,
                 u,
                 nv,
-                b: t.b,
                 t: None,
             };
             best = match best {
                 None => Some(hit),
                 Some(mut prev) => {
                     // Two hits on one pixel: the nearer wins (the first on a tie).
-                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma));
+                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma, run.d));
                     prev.t = Some(t_prev);
-                    let t_new = self.narrow_t(&hit, sigma);
+                    let t_new = self.narrow_t(&hit, sigma, run.d);
                     hit.t = Some(t_new);
                     Some(if t_new < t_prev { hit } else { prev })
                 }
@@ -632,17 +638,62 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         false
     }
 
-    /// `t` of a hit in raw I16F16, for choosing the nearer of two: `−b/|D| − r·(N·V)`.
+    /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
+    /// two: `−b/|D| − r·(N·V)`.
     #[inline(always)]
-    fn narrow_t(&self, hit: &Hit, sigma: i32) -> i64 {
-        let narrow = self.spheres.get(hit.index).and_then(|s| s.narrow.as_ref());
+    fn narrow_t(&self, hit: &Hit, sigma: i32, d: V3<i32>) -> i64 {
+        let sphere = self.spheres.get(hit.index);
+        let narrow = sphere.and_then(|s| s.narrow.as_ref());
         // Only frames whose every sphere has narrow data take the narrow kernel.
         debug_assert!(narrow.is_some(), "sphere {} has no narrow data", hit.index);
         let radius = narrow.map_or(0, |n| n.radius);
-        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): |b| < 2⁶¹, so (−b) >> 30 fits 31 bits.
-        let along = (mul_uu(((-hit.b) >> 30) as u32, sigma as u32) >> 14) as i64;
+        let b = sphere.map_or(0, |s| narrow_b(s.eye_offset.map(|c| c.to_bits()), d));
+        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
+        let along = (mul_uu(((-b) >> 30) as u32, sigma as u32) >> 14) as i64;
         along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
     }
+}
+
+/// `b = oc·D` of the raw eye offset `oc` and a narrow direction `D`, exact.
+#[inline(always)]
+fn narrow_b(oc: V3<i32>, d: V3<i32>) -> i64 {
+    mul_ii(oc[0], d[0]) + mul_ii(oc[1], d[1]) + mul_ii(oc[2], d[2])
+}
+
+/// The columns of `[start, end)` where `b_at(column)` is negative, `None` if there are none.
+/// `b` is linear in the column (growing if `rises`, otherwise not), so they are one
+/// interval: the first column is tested, the last one too unless the first one's sign and
+/// the slope's settle it, and where the sign changes between them a binary search finds
+/// the column where it does.
+#[inline(always)]
+fn front_part(start: u32, end: u32, rises: bool, b_at: impl Fn(u32) -> i64) -> Option<Span> {
+    if start >= end {
+        return None;
+    }
+    let first = b_at(start) < 0;
+    if first != rises {
+        // Negative and not growing, or not negative and growing: the sign stays.
+        return first.then_some(Span { start, end });
+    }
+    let last = b_at(end - 1) < 0;
+    if first == last {
+        return first.then_some(Span { start, end });
+    }
+    // The sign at `lo` is `first`'s, the sign at `hi` is `last`'s.
+    let (mut lo, mut hi) = (start, end - 1);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if (b_at(mid) < 0) == first {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(if first {
+        Span { start, end: hi }
+    } else {
+        Span { start: hi, end }
+    })
 }
 
 /// `½|c|²` of a Q15 difference of two unit vectors: the lobe's `h` in Q31, saturating (any
@@ -759,7 +810,7 @@ mod tests {
             let spans = frame.row_spans(y);
             for run in merge_runs::<16>(&spans) {
                 let mut state = NarrowRun::new();
-                assert!(frame.narrow_run(&mut state, run.start, y, &spans));
+                assert!(frame.narrow_run(&mut state, run.start, run.end, y, &spans));
                 for _ in run.start..run.end {
                     if let Some(surface) = frame.narrow_surface(&state) {
                         out.push((surface, state.d));

@@ -120,7 +120,8 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         let precise_darks = encoding.transfer != Transfer::Linear;
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             let mut narrow = NarrowRun::new();
-            if self.narrow_run(&mut narrow, start as u32, y, &spans) {
+            let end = (start + run_pixels.len()) as u32;
+            if self.narrow_run(&mut narrow, start as u32, end, y, &spans) {
                 // The narrow kernel, and the full-width one where the narrow one hands over,
                 // on that pixel's direction (exact whether stepped or computed directly).
                 for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
