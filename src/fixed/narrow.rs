@@ -504,6 +504,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let mut diffuse = [0u32; 3];
         let mut specular = [0u32; 3];
+        // Whether a lobe was added to `specular`: if not, it is 0 and adds nothing.
+        let mut glossy = false;
         let mut shadowed = 0u32;
         for (light_index, light) in self.lights.iter().enumerate() {
             let FixedLight::Distant { to_light, arriving } = *light else {
@@ -561,12 +563,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             for (acc, i) in specular.iter_mut().zip(arriving) {
                 *acc = acc.saturating_add(scale_q16(i, lobe));
             }
+            glossy = true;
         }
+        let diffuse = each3(|c| mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c]));
         Narrow::Done(Some(Shaded {
-            color: each3(|c| {
-                mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c])
-                    .saturating_add(mul_u16f16(sphere.ks.to_bits(), specular[c]))
-            }),
+            color: if glossy {
+                each3(|c| {
+                    let s = mul_u16f16(sphere.ks.to_bits(), specular[c]);
+                    diffuse[c].saturating_add(s)
+                })
+            } else {
+                diffuse
+            },
             hit: HitRecord {
                 sphere: Some(index as u16),
                 shadowed,
