@@ -319,7 +319,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// the narrow kernel. In place because a run holds a track per sphere: at the default
     /// capacity about 1.4 KB, which a returned value would cost a `memcpy` or two per run
     /// (10% of a frame on RV32). Only the spheres whose span meets the run get a track.
-    #[inline(always)]
+    /// Not inlined: once per run, and apart from the pixel loop's registers.
+    #[inline(never)]
     pub(crate) fn narrow_run(
         &self,
         run: &mut NarrowRun<S>,
