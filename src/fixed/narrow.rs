@@ -270,12 +270,20 @@ fn even_leading_zeros(x: u32) -> u32 {
     }
 }
 
-/// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products.
+/// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products
+/// on ARMv6-M, one widening product elsewhere.
 #[inline(always)]
 fn scale_q16(a: u32, b: u32) -> u32 {
-    let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
-    let low = ((a & 0xffff) * b) >> 16;
-    high.saturating_add(low)
+    #[cfg(shadeline_short_mul)]
+    {
+        let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
+        let low = ((a & 0xffff) * b) >> 16;
+        high.saturating_add(low)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        u32::try_from(mul_uu(a, b) >> 16).unwrap_or(u32::MAX)
+    }
 }
 
 /// `k·v/2¹⁶`, rounded down, saturating: [`scale_q16`] when `k ≤ 1` (U16F16), which
@@ -289,15 +297,23 @@ fn mul_u16f16(k: u32, v: u32) -> u32 {
     }
 }
 
-/// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products.
+/// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products
+/// on ARMv6-M, one widening product elsewhere.
 #[inline(always)]
 fn scale_q15(a: u32, b: i32) -> u32 {
     let b = b.clamp(0, ONE) as u32;
-    let high = (a >> 16) * b; // < 2³¹
-    let low = ((a & 0xffff) * b) >> 15;
-    high.checked_mul(2)
-        .and_then(|h| h.checked_add(low))
-        .unwrap_or(u32::MAX)
+    #[cfg(shadeline_short_mul)]
+    {
+        let high = (a >> 16) * b; // < 2³¹
+        let low = ((a & 0xffff) * b) >> 15;
+        high.checked_mul(2)
+            .and_then(|h| h.checked_add(low))
+            .unwrap_or(u32::MAX)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        u32::try_from(mul_uu(a, b) >> 15).unwrap_or(u32::MAX)
+    }
 }
 
 #[inline(always)]
