@@ -391,20 +391,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         true
     }
 
-    /// Moves `run` one pixel to the right: the direction, and each sphere whose span has
-    /// begun.
+    /// Moves `run` one pixel to the right, once its active tracks have moved: the direction,
+    /// and the set of active tracks where a span begins or ends.
     #[inline(always)]
-    pub(crate) fn narrow_advance(&self, run: &mut NarrowRun<S>) {
+    fn narrow_step(run: &mut NarrowRun<S>) {
         for (c, s) in run.d.iter_mut().zip(run.step) {
             *c += s;
-        }
-        for &i in &run.active {
-            debug_assert!((i as usize) < run.tracks.len());
-            if let Some(t) = run.tracks.get_mut(i as usize) {
-                t.w[0] += t.dw[0];
-                t.w[1] += t.dw[1];
-                t.w[2] += t.dw[2];
-            }
         }
         run.x += 1;
         if run.x >= run.changes_at {
@@ -412,13 +404,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
-    /// Shades pixel `x` of `run` with the narrow kernel, or says it needs the full-width one.
-    /// `precise_darks`: hand over the dark pixels near the silhouette (see
-    /// [`Self::narrow_lights`]).
+    /// Shades pixel `x` of `run` with the narrow kernel, or says it needs the full-width one,
+    /// and moves `run` one pixel to the right. `precise_darks`: hand over the dark pixels
+    /// near the silhouette (see [`Self::narrow_lights`]).
     #[inline(always)]
     pub(crate) fn narrow_shade(
         &self,
-        run: &NarrowRun<S>,
+        run: &mut NarrowRun<S>,
         record_hits: bool,
         precise_darks: bool,
     ) -> Narrow {
@@ -429,9 +421,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
-    /// `D̂` and `N` in Q15; `None` for the background.
+    /// `D̂` and `N` in Q15, `None` for the background; and `run` moved one pixel to the
+    /// right (each active track's `w` advances where the loop reads it).
     #[inline(always)]
-    fn narrow_surface(&self, run: &NarrowRun<S>) -> Option<Surface> {
+    fn narrow_surface(&self, run: &mut NarrowRun<S>) -> Option<Surface> {
         let x = run.x;
         let d16 = run.d.map(|c| c >> 15);
         // |D16| < 2¹⁵·√2·…: a < 2³¹.
@@ -447,15 +440,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let sigma = sigma.min(ONE as u32) as i32;
 
+        let d = run.d;
         let mut best: Option<Hit> = None;
         for &i in &run.active {
-            let t = run.tracks.get(i as usize);
+            let t = run.tracks.get_mut(i as usize);
             debug_assert!(t.is_some(), "track {i} of {}", run.tracks.len());
             let Some(t) = t else {
                 continue;
             };
             debug_assert!(t.span.start <= x && x < t.span.end);
-            let high = t.w.map(|c| (c >> 32) as i32 >> t.right);
+            let w = t.w;
+            t.w = each3(|k| w[k] + t.dw[k]);
+            let t = &*t;
+            let high = w.map(|c| (c >> 32) as i32 >> t.right);
             if (high[0].unsigned_abs() | high[1].unsigned_abs() | high[2].unsigned_abs()) >= 1 << 16
             {
                 continue;
@@ -480,14 +477,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 None => Some(hit),
                 Some(mut prev) => {
                     // Two hits on one pixel: the nearer wins (the first on a tie).
-                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma, run.d));
+                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma, d));
                     prev.t = Some(t_prev);
-                    let t_new = self.narrow_t(&hit, sigma, run.d);
+                    let t_new = self.narrow_t(&hit, sigma, d);
                     hit.t = Some(t_new);
                     Some(if t_new < t_prev { hit } else { prev })
                 }
             };
         }
+        Self::narrow_step(run);
         let hit = best?;
         // D̂ (Q15) and N = D̂ × u − (N·V)·D̂.
         let dh = d16.map(|c| (c * sigma) >> 14);
@@ -837,10 +835,10 @@ mod tests {
                 let mut state = NarrowRun::new();
                 assert!(frame.narrow_run(&mut state, run.start, run.end, y, &spans));
                 for _ in run.start..run.end {
-                    if let Some(surface) = frame.narrow_surface(&state) {
-                        out.push((surface, state.d));
+                    let d = state.d;
+                    if let Some(surface) = frame.narrow_surface(&mut state) {
+                        out.push((surface, d));
                     }
-                    frame.narrow_advance(&mut state);
                 }
             }
         }

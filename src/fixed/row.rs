@@ -111,7 +111,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     self.shade_ray(dir, column, spans, P::NEEDS_HITS)
                 }
             };
-            self.narrow_advance(narrow);
             *px = match shaded {
                 Some(s) => encode(s.color, s.hit, encoding, column, y),
                 None => background.at(column as usize),
