@@ -519,8 +519,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let mut diffuse = [0u32; 3];
         let mut specular = [0u32; 3];
-        // Whether a lobe was added to `specular`: if not, it is 0 and adds nothing.
-        let mut glossy = false;
+        // Whether a term was added to `diffuse` or a lobe to `specular`: if not, it is 0 and
+        // adds nothing.
+        let (mut lit, mut glossy) = (false, false);
         let mut shadowed = 0u32;
         for (light_index, light) in self.lights.iter().enumerate() {
             let FixedLight::Distant { to_light, arriving } = *light else {
@@ -551,6 +552,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 for (acc, i) in diffuse.iter_mut().zip(arriving) {
                     *acc = acc.saturating_add(scale_q15(i, nl));
                 }
+                lit = true;
             }
             let h = if sphere.blinn {
                 // H = (L + V)/|L + V| with V = −D̂; none where L = −V.
@@ -580,7 +582,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             glossy = true;
         }
-        let diffuse = each3(|c| mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c]));
+        let diffuse = if lit {
+            each3(|c| mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c]))
+        } else {
+            [0; 3]
+        };
         Narrow::Done(Some(Shaded {
             color: if glossy {
                 each3(|c| {
