@@ -189,19 +189,22 @@ struct Surface {
     nv: i32,
 }
 
-/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern `64..=255` of a value in `[¼, 1)`.
-const BINS: usize = 192;
+/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern of a `u32`.
+const BINS: usize = 256;
 
-/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`).
+/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`), indexed by
+/// the top 8 bits of `m` (`64..=255`); the entries below 64, which a normalized value never
+/// reaches, repeat bin 64's, so every `u32` indexes it without a check.
 static RSQRT_TABLE: [u16; BINS] = rsqrt_table();
 
 const fn rsqrt_table() -> [u16; BINS] {
     let mut table = [0u16; BINS];
     let mut i = 0;
     while i < BINS {
-        // Bin `64 + i` covers m in [(64 + i)/256, (65 + i)/256); its centre is
-        // (2i + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2i + 129)).
-        table[i] = ((1u64 << 39) / (2 * i as u64 + 129)).isqrt() as u16;
+        // Bin `64 + j` covers m in [(64 + j)/256, (65 + j)/256); its centre is
+        // (2j + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2j + 129)).
+        let j = i.saturating_sub(64) as u64;
+        table[i] = ((1u64 << 39) / (2 * j + 129)).isqrt() as u16;
         i += 1;
     }
     table
@@ -220,7 +223,7 @@ pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
 fn rsqrt_normalized(m: u32) -> u32 {
     debug_assert!(m >= 1 << 30, "m = {m:#x} is not normalized");
     let y0 = RSQRT_TABLE
-        .get(((m >> 24) as usize).saturating_sub(64))
+        .get((m >> 24) as usize)
         .copied()
         .unwrap_or(1 << 15) as u32;
     // m·y0² as Q30 from their top 16 bits (y0² Q30 → Q14, m Q32 → Q16): about 2³⁰.
