@@ -671,8 +671,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
-    /// two: `−b/|D| − r·(N·V)`.
-    #[inline(always)]
+    /// two: `−b/|D| − r·(N·V)`. Only pixels with two hits need it; on ARMv6-M, whose 64-bit
+    /// products are long inline sequences, it is not inlined, which keeps them out of the
+    /// pixel loop's code and registers.
+    #[cfg_attr(shadeline_short_mul, inline(never))]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
     fn narrow_t(&self, hit: &Hit, sigma: i32, d: V3<i32>) -> i64 {
         let sphere = self.spheres.get(hit.index);
         let narrow = sphere.and_then(|s| s.narrow.as_ref());
