@@ -67,7 +67,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// [`Self::direction`] where the narrow kernel is set up: every direction's components
     /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
     /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
-    /// same bits as [`Self::direction`].
+    /// same bits as [`Self::direction`]. Only the pixels the narrow kernel hands over need
+    /// it; on ARMv6-M, where its six products are long inline sequences, it is not inlined
+    /// into the pixel loop.
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn narrow_direction_wide(&self, x: u32, y: u32) -> V3<I16F48> {
         // |dx|, |dy| ≤ 2·MAX_DIMENSION + 1 < 2³¹.
         let dy = self.height as i32 - 2 * y as i32 - 1;
