@@ -147,8 +147,9 @@ impl<const S: usize> NarrowRun<S> {
 }
 
 /// The tracks whose span covers column `x` (indices into `tracks`), and the next column
-/// where a span begins or ends.
-#[inline(always)]
+/// where a span begins or ends. Not inlined: the pixel loop only calls it where a span
+/// begins or ends.
+#[inline(never)]
 fn activity<const S: usize>(tracks: &[Track], x: u32) -> (heapless::Vec<u8, S>, u32) {
     let mut active = heapless::Vec::new();
     let mut changes_at = u32::MAX;
