@@ -128,7 +128,19 @@ pub(crate) fn walk_runs<P: Pixel>(
 
 /// Merged covered runs of a row: `[start, end)` pixel ranges, sorted, disjoint.
 pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Vec<Span, S> {
-    let mut runs: heapless::Vec<Span, S> = heapless::Vec::new();
+    let mut runs = heapless::Vec::new();
+    merge_runs_into(spans, &mut runs);
+    runs
+}
+
+/// [`merge_runs`] into `runs` (cleared first), in place: a row driver keeps the runs in its
+/// own frame instead of receiving a copy.
+#[inline(never)]
+pub(crate) fn merge_runs_into<const S: usize>(
+    spans: &[Option<Span>],
+    runs: &mut heapless::Vec<Span, S>,
+) {
+    runs.clear();
     for span in spans.iter().flatten() {
         // At most one span per sphere: cannot fail.
         let pushed = runs.push(*span);
@@ -147,18 +159,24 @@ pub(crate) fn merge_runs<const S: usize>(spans: &[Option<Span>]) -> heapless::Ve
             j -= 1;
         }
     }
-    let mut merged: heapless::Vec<Span, S> = heapless::Vec::new();
-    for span in runs {
-        match merged.last_mut() {
+    // Merged in place: the first `kept` entries are the merged runs so far.
+    let mut kept = 0usize;
+    for i in 0..runs.len() {
+        let Some(&span) = runs.get(i) else {
+            break;
+        };
+        match kept.checked_sub(1).and_then(|k| runs.get_mut(k)) {
             Some(last) if span.start <= last.end => last.end = last.end.max(span.end),
             _ => {
-                // No more merged runs than runs: cannot fail.
-                let pushed = merged.push(span);
-                debug_assert!(pushed.is_ok(), "more merged runs than runs");
+                // `kept ≤ i`: a slot that exists.
+                if let Some(slot) = runs.get_mut(kept) {
+                    *slot = span;
+                }
+                kept += 1;
             }
         }
     }
-    merged
+    runs.truncate(kept);
 }
 
 #[cfg(test)]

@@ -26,10 +26,12 @@
 //!
 //! With `D` the unnormalized primary direction, `oc = eye − centre` and `r` the radius:
 //!
-//! - `w = oc × D` and `b = oc·D` are linear along a row, so they advance by one exact
-//!   64-bit addition per pixel (`D` is an integer vector that advances by an integer step,
-//!   so no rounding accumulates: a pixel's values do not depend on where its run or
-//!   segment starts);
+//! - `w = oc × D` and `b = oc·D` are linear along a row: `w` advances by one exact 64-bit
+//!   addition per pixel (`D` is an integer vector that advances by an integer step, so no
+//!   rounding accumulates: a pixel's values do not depend on where its run or segment
+//!   starts), and the columns where `b < 0` are one interval, found once per run, to which
+//!   the sphere's span is narrowed (`b` itself is only computed again where two hits on one
+//!   pixel are compared);
 //! - `σ = |D₀|/|D|` (from `1/√|D|²`, see [`rsqrt`]) scales everything to unit length:
 //!   `D̂ = D·σ/|D₀|` and `u = w·σ/(r·|D₀|) = (oc × D̂)/r`, both Q15;
 //! - the ray hits the sphere iff `b < 0` (it is in front) and `|u| ≤ 1`. Then
@@ -98,16 +100,17 @@ pub(crate) enum Narrow {
 
 /// One sphere along a run: its values at column `max(x, span.start)` of the run's current
 /// column `x`, and what the hot loop needs of its constants.
+///
+/// `span` is the part of the sphere's span on the row where `b = oc·D` is negative (the
+/// sphere is in front along the ray): `b` is linear along the row, so that part is one
+/// interval, found once per run, and the hot loop neither advances `b` nor tests its sign.
 #[derive(Clone, Copy)]
 struct Track {
     index: usize,
     span: Span,
     /// `oc × D`, held shifted left by the sphere's `left`.
     w: V3<i64>,
-    /// `oc·D`.
-    b: i64,
     dw: V3<i64>,
-    db: i64,
     right: u32,
     gain: u32,
 }
@@ -144,8 +147,9 @@ impl<const S: usize> NarrowRun<S> {
 }
 
 /// The tracks whose span covers column `x` (indices into `tracks`), and the next column
-/// where a span begins or ends.
-#[inline(always)]
+/// where a span begins or ends. Not inlined: the pixel loop only calls it where a span
+/// begins or ends.
+#[inline(never)]
 fn activity<const S: usize>(tracks: &[Track], x: u32) -> (heapless::Vec<u8, S>, u32) {
     let mut active = heapless::Vec::new();
     let mut changes_at = u32::MAX;
@@ -168,12 +172,11 @@ fn activity<const S: usize>(tracks: &[Track], x: u32) -> (heapless::Vec<u8, S>, 
     (active, changes_at)
 }
 
-/// A hit: the sphere, `u`, `N·V`, `b`, and `t` in raw I16F16 once two hits are compared.
+/// A hit: the sphere, `u`, `N·V`, and `t` in raw I16F16 once two hits are compared.
 struct Hit {
     index: usize,
     u: V3<i32>,
     nv: i32,
-    b: i64,
     t: Option<i64>,
 }
 
@@ -187,19 +190,22 @@ struct Surface {
     nv: i32,
 }
 
-/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern `64..=255` of a value in `[¼, 1)`.
-const BINS: usize = 192;
+/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern of a `u32`.
+const BINS: usize = 256;
 
-/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`).
+/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`), indexed by
+/// the top 8 bits of `m` (`64..=255`); the entries below 64, which a normalized value never
+/// reaches, repeat bin 64's, so every `u32` indexes it without a check.
 static RSQRT_TABLE: [u16; BINS] = rsqrt_table();
 
 const fn rsqrt_table() -> [u16; BINS] {
     let mut table = [0u16; BINS];
     let mut i = 0;
     while i < BINS {
-        // Bin `64 + i` covers m in [(64 + i)/256, (65 + i)/256); its centre is
-        // (2i + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2i + 129)).
-        table[i] = ((1u64 << 39) / (2 * i as u64 + 129)).isqrt() as u16;
+        // Bin `64 + j` covers m in [(64 + j)/256, (65 + j)/256); its centre is
+        // (2j + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2j + 129)).
+        let j = i.saturating_sub(64) as u64;
+        table[i] = ((1u64 << 39) / (2 * j + 129)).isqrt() as u16;
         i += 1;
     }
     table
@@ -218,7 +224,7 @@ pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
 fn rsqrt_normalized(m: u32) -> u32 {
     debug_assert!(m >= 1 << 30, "m = {m:#x} is not normalized");
     let y0 = RSQRT_TABLE
-        .get(((m >> 24) as usize).saturating_sub(64))
+        .get((m >> 24) as usize)
         .copied()
         .unwrap_or(1 << 15) as u32;
     // m·y0² as Q30 from their top 16 bits (y0² Q30 → Q14, m Q32 → Q16): about 2³⁰.
@@ -268,12 +274,20 @@ fn even_leading_zeros(x: u32) -> u32 {
     }
 }
 
-/// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products.
+/// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products
+/// on ARMv6-M, one widening product elsewhere.
 #[inline(always)]
 fn scale_q16(a: u32, b: u32) -> u32 {
-    let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
-    let low = ((a & 0xffff) * b) >> 16;
-    high.saturating_add(low)
+    #[cfg(shadeline_short_mul)]
+    {
+        let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
+        let low = ((a & 0xffff) * b) >> 16;
+        high.saturating_add(low)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        u32::try_from(mul_uu(a, b) >> 16).unwrap_or(u32::MAX)
+    }
 }
 
 /// `k·v/2¹⁶`, rounded down, saturating: [`scale_q16`] when `k ≤ 1` (U16F16), which
@@ -287,15 +301,23 @@ fn mul_u16f16(k: u32, v: u32) -> u32 {
     }
 }
 
-/// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products.
+/// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products
+/// on ARMv6-M, one widening product elsewhere.
 #[inline(always)]
 fn scale_q15(a: u32, b: i32) -> u32 {
     let b = b.clamp(0, ONE) as u32;
-    let high = (a >> 16) * b; // < 2³¹
-    let low = ((a & 0xffff) * b) >> 15;
-    high.checked_mul(2)
-        .and_then(|h| h.checked_add(low))
-        .unwrap_or(u32::MAX)
+    #[cfg(shadeline_short_mul)]
+    {
+        let high = (a >> 16) * b; // < 2³¹
+        let low = ((a & 0xffff) * b) >> 15;
+        high.checked_mul(2)
+            .and_then(|h| h.checked_add(low))
+            .unwrap_or(u32::MAX)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        u32::try_from(mul_uu(a, b) >> 15).unwrap_or(u32::MAX)
+    }
 }
 
 #[inline(always)]
@@ -312,15 +334,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         each3(|i| view.forward[i] + dy * view.step_y[i] + dx * view.step_x[i])
     }
 
-    /// Sets `run` to the narrow state at the first pixel `x` of a run on row `y`, in place;
-    /// `false` (and `run` unchanged) if the frame does not use the narrow kernel. In place
-    /// because a run holds a track per sphere: at the default capacity about 1.4 KB, which a
-    /// returned value would cost a `memcpy` or two per run (10% of a frame on RV32).
-    #[inline(always)]
+    /// Sets `run` to the narrow state at the first pixel `x` of a run on row `y` that ends
+    /// before column `end`, in place; `false` (and `run` unchanged) if the frame does not use
+    /// the narrow kernel. In place because a run holds a track per sphere: at the default
+    /// capacity about 1.4 KB, which a returned value would cost a `memcpy` or two per run
+    /// (10% of a frame on RV32). Only the spheres whose span meets the run get a track.
+    /// Not inlined: once per run, and apart from the pixel loop's registers.
+    #[inline(never)]
     pub(crate) fn narrow_run(
         &self,
         run: &mut NarrowRun<S>,
         x: u32,
+        end: u32,
         y: u32,
         spans: &[Option<Span>],
     ) -> bool {
@@ -332,11 +357,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let (Some(span), Some(n)) = (span, s.narrow.as_ref()) else {
                 continue;
             };
-            if span.end <= x {
+            if span.end <= x || end <= span.start {
                 continue;
             }
-            let d = Self::narrow_direction(view, x.max(span.start), y, self.width, self.height);
             let oc = s.eye_offset.map(|c| c.to_bits());
+            let b_at = |column| {
+                narrow_b(
+                    oc,
+                    Self::narrow_direction(view, column, y, self.width, self.height),
+                )
+            };
+            let Some(span) = front_part(x.max(span.start), span.end, n.b_rises, b_at) else {
+                continue;
+            };
+            let d = Self::narrow_direction(view, span.start, y, self.width, self.height);
             let cross = [
                 mul_ii(oc[1], d[2]) - mul_ii(oc[2], d[1]),
                 mul_ii(oc[2], d[0]) - mul_ii(oc[0], d[2]),
@@ -344,11 +378,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             ];
             let track = Track {
                 index,
-                span: *span,
+                span,
                 w: cross.map(|c| c << n.left),
-                b: mul_ii(oc[0], d[0]) + mul_ii(oc[1], d[1]) + mul_ii(oc[2], d[2]),
                 dw: n.dw,
-                db: n.db,
                 right: n.right,
                 gain: n.gain,
             };
@@ -363,21 +395,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         true
     }
 
-    /// Moves `run` one pixel to the right: the direction, and each sphere whose span has
-    /// begun.
+    /// Moves `run` one pixel to the right, once its active tracks have moved: the direction,
+    /// and the set of active tracks where a span begins or ends.
     #[inline(always)]
-    pub(crate) fn narrow_advance(&self, run: &mut NarrowRun<S>) {
+    fn narrow_step(run: &mut NarrowRun<S>) {
         for (c, s) in run.d.iter_mut().zip(run.step) {
             *c += s;
-        }
-        for &i in &run.active {
-            debug_assert!((i as usize) < run.tracks.len());
-            if let Some(t) = run.tracks.get_mut(i as usize) {
-                t.w[0] += t.dw[0];
-                t.w[1] += t.dw[1];
-                t.w[2] += t.dw[2];
-                t.b += t.db;
-            }
         }
         run.x += 1;
         if run.x >= run.changes_at {
@@ -385,13 +408,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
-    /// Shades pixel `x` of `run` with the narrow kernel, or says it needs the full-width one.
-    /// `precise_darks`: hand over the dark pixels near the silhouette (see
-    /// [`Self::narrow_lights`]).
+    /// Shades pixel `x` of `run` with the narrow kernel, or says it needs the full-width one,
+    /// and moves `run` one pixel to the right. `precise_darks`: hand over the dark pixels
+    /// near the silhouette (see [`Self::narrow_lights`]).
     #[inline(always)]
     pub(crate) fn narrow_shade(
         &self,
-        run: &NarrowRun<S>,
+        run: &mut NarrowRun<S>,
         record_hits: bool,
         precise_darks: bool,
     ) -> Narrow {
@@ -402,9 +425,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
-    /// `D̂` and `N` in Q15; `None` for the background.
+    /// `D̂` and `N` in Q15, `None` for the background; and `run` moved one pixel to the
+    /// right (each active track's `w` advances where the loop reads it).
     #[inline(always)]
-    fn narrow_surface(&self, run: &NarrowRun<S>) -> Option<Surface> {
+    fn narrow_surface(&self, run: &mut NarrowRun<S>) -> Option<Surface> {
         let x = run.x;
         let d16 = run.d.map(|c| c >> 15);
         // |D16| < 2¹⁵·√2·…: a < 2³¹.
@@ -420,18 +444,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let sigma = sigma.min(ONE as u32) as i32;
 
+        let d = run.d;
         let mut best: Option<Hit> = None;
         for &i in &run.active {
-            let t = run.tracks.get(i as usize);
+            let t = run.tracks.get_mut(i as usize);
             debug_assert!(t.is_some(), "track {i} of {}", run.tracks.len());
             let Some(t) = t else {
                 continue;
             };
             debug_assert!(t.span.start <= x && x < t.span.end);
-            if t.b >= 0 {
-                continue;
-            }
-            let high = t.w.map(|c| (c >> 32) as i32 >> t.right);
+            let w = t.w;
+            t.w = each3(|k| w[k] + t.dw[k]);
+            let t = &*t;
+            let high = w.map(|c| (c >> 32) as i32 >> t.right);
             if (high[0].unsigned_abs() | high[1].unsigned_abs() | high[2].unsigned_abs()) >= 1 << 16
             {
                 continue;
@@ -450,21 +475,21 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 index: t.index,
                 u,
                 nv,
-                b: t.b,
                 t: None,
             };
             best = match best {
                 None => Some(hit),
                 Some(mut prev) => {
                     // Two hits on one pixel: the nearer wins (the first on a tie).
-                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma));
+                    let t_prev = prev.t.unwrap_or_else(|| self.narrow_t(&prev, sigma, d));
                     prev.t = Some(t_prev);
-                    let t_new = self.narrow_t(&hit, sigma);
+                    let t_new = self.narrow_t(&hit, sigma, d);
                     hit.t = Some(t_new);
                     Some(if t_new < t_prev { hit } else { prev })
                 }
             };
         }
+        Self::narrow_step(run);
         let hit = best?;
         // D̂ (Q15) and N = D̂ × u − (N·V)·D̂.
         let dh = d16.map(|c| (c * sigma) >> 14);
@@ -498,6 +523,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let mut diffuse = [0u32; 3];
         let mut specular = [0u32; 3];
+        // Whether a term was added to `diffuse` or a lobe to `specular`: if not, it is 0 and
+        // adds nothing.
+        let (mut lit, mut glossy) = (false, false);
         let mut shadowed = 0u32;
         for (light_index, light) in self.lights.iter().enumerate() {
             let FixedLight::Distant { to_light, arriving } = *light else {
@@ -528,6 +556,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 for (acc, i) in diffuse.iter_mut().zip(arriving) {
                     *acc = acc.saturating_add(scale_q15(i, nl));
                 }
+                lit = true;
             }
             let h = if sphere.blinn {
                 // H = (L + V)/|L + V| with V = −D̂; none where L = −V.
@@ -555,12 +584,22 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             for (acc, i) in specular.iter_mut().zip(arriving) {
                 *acc = acc.saturating_add(scale_q16(i, lobe));
             }
+            glossy = true;
         }
+        let diffuse = if lit {
+            each3(|c| mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c]))
+        } else {
+            [0; 3]
+        };
         Narrow::Done(Some(Shaded {
-            color: each3(|c| {
-                mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c])
-                    .saturating_add(mul_u16f16(sphere.ks.to_bits(), specular[c]))
-            }),
+            color: if glossy {
+                each3(|c| {
+                    let s = mul_u16f16(sphere.ks.to_bits(), specular[c]);
+                    diffuse[c].saturating_add(s)
+                })
+            } else {
+                diffuse
+            },
             hit: HitRecord {
                 sphere: Some(index as u16),
                 shadowed,
@@ -632,17 +671,65 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         false
     }
 
-    /// `t` of a hit in raw I16F16, for choosing the nearer of two: `−b/|D| − r·(N·V)`.
-    #[inline(always)]
-    fn narrow_t(&self, hit: &Hit, sigma: i32) -> i64 {
-        let narrow = self.spheres.get(hit.index).and_then(|s| s.narrow.as_ref());
+    /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
+    /// two: `−b/|D| − r·(N·V)`. Only pixels with two hits need it; on ARMv6-M, whose 64-bit
+    /// products are long inline sequences, it is not inlined, which keeps them out of the
+    /// pixel loop's code and registers.
+    #[cfg_attr(shadeline_short_mul, inline(never))]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    fn narrow_t(&self, hit: &Hit, sigma: i32, d: V3<i32>) -> i64 {
+        let sphere = self.spheres.get(hit.index);
+        let narrow = sphere.and_then(|s| s.narrow.as_ref());
         // Only frames whose every sphere has narrow data take the narrow kernel.
         debug_assert!(narrow.is_some(), "sphere {} has no narrow data", hit.index);
         let radius = narrow.map_or(0, |n| n.radius);
-        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): |b| < 2⁶¹, so (−b) >> 30 fits 31 bits.
-        let along = (mul_uu(((-hit.b) >> 30) as u32, sigma as u32) >> 14) as i64;
+        let b = sphere.map_or(0, |s| narrow_b(s.eye_offset.map(|c| c.to_bits()), d));
+        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
+        let along = (mul_uu(((-b) >> 30) as u32, sigma as u32) >> 14) as i64;
         along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
     }
+}
+
+/// `b = oc·D` of the raw eye offset `oc` and a narrow direction `D`, exact.
+#[inline(always)]
+fn narrow_b(oc: V3<i32>, d: V3<i32>) -> i64 {
+    mul_ii(oc[0], d[0]) + mul_ii(oc[1], d[1]) + mul_ii(oc[2], d[2])
+}
+
+/// The columns of `[start, end)` where `b_at(column)` is negative, `None` if there are none.
+/// `b` is linear in the column (growing if `rises`, otherwise not), so they are one
+/// interval: the first column is tested, the last one too unless the first one's sign and
+/// the slope's settle it, and where the sign changes between them a binary search finds
+/// the column where it does.
+#[inline(always)]
+fn front_part(start: u32, end: u32, rises: bool, b_at: impl Fn(u32) -> i64) -> Option<Span> {
+    if start >= end {
+        return None;
+    }
+    let first = b_at(start) < 0;
+    if first != rises {
+        // Negative and not growing, or not negative and growing: the sign stays.
+        return first.then_some(Span { start, end });
+    }
+    let last = b_at(end - 1) < 0;
+    if first == last {
+        return first.then_some(Span { start, end });
+    }
+    // The sign at `lo` is `first`'s, the sign at `hi` is `last`'s.
+    let (mut lo, mut hi) = (start, end - 1);
+    while hi - lo > 1 {
+        let mid = lo + (hi - lo) / 2;
+        if (b_at(mid) < 0) == first {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    Some(if first {
+        Span { start, end: hi }
+    } else {
+        Span { start: hi, end }
+    })
 }
 
 /// `½|c|²` of a Q15 difference of two unit vectors: the lobe's `h` in Q31, saturating (any
@@ -759,12 +846,12 @@ mod tests {
             let spans = frame.row_spans(y);
             for run in merge_runs::<16>(&spans) {
                 let mut state = NarrowRun::new();
-                assert!(frame.narrow_run(&mut state, run.start, y, &spans));
+                assert!(frame.narrow_run(&mut state, run.start, run.end, y, &spans));
                 for _ in run.start..run.end {
-                    if let Some(surface) = frame.narrow_surface(&state) {
-                        out.push((surface, state.d));
+                    let d = state.d;
+                    if let Some(surface) = frame.narrow_surface(&mut state) {
+                        out.push((surface, d));
                     }
-                    frame.narrow_advance(&mut state);
                 }
             }
         }

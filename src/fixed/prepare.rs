@@ -80,9 +80,10 @@ pub(crate) struct NarrowSphere {
     pub fast: Option<FastCaster>,
     /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
     pub left: u32,
-    /// `w` and `b` per pixel step (`oc × 2·step_x`, held shifted like `w`; `oc·2·step_x`).
+    /// `w` per pixel step: `oc × 2·step_x`, held shifted like `w`.
     pub dw: V3<i64>,
-    pub db: i64,
+    /// Whether `b = oc·D` grows along a row (`oc·step_x > 0`).
+    pub b_rises: bool,
 }
 
 /// A caster of a sphere, for the 32-bit filter in front of the narrow kernel's exact caster
@@ -685,7 +686,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 radius: r as u32,
                 gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
                 dw: cross.map(|c| c << left),
-                db: mul_ii(oc[0], step2[0]) + mul_ii(oc[1], step2[1]) + mul_ii(oc[2], step2[2]),
+                b_rises: mul_ii(oc[0], step2[0])
+                    + mul_ii(oc[1], step2[1])
+                    + mul_ii(oc[2], step2[2])
+                    > 0,
                 shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
                     as u32,
                 cutoff,

@@ -16,7 +16,7 @@ use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, Encoding, Transfer};
 use crate::pixel::{pixel_from_codes, FixedShade, HitRecord, Pixel};
 use crate::render::{check_segment, Render, RenderError};
-use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
+use crate::runs::{coverage_of, merge_runs_into, walk_runs, Background, Span};
 use fixed::types::I16F48;
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
@@ -24,11 +24,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// of its screen rectangle its outline can reach on the row. With spans off ([`PreparedFixed::with_spans`]) every sphere
     /// spans the whole row.
     pub fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
+        let mut out = heapless::Vec::new();
+        self.row_spans_into(y, &mut out);
+        out
+    }
+
+    /// [`Self::row_spans`] into `out` (cleared first), in place: the row driver keeps the
+    /// spans in its own frame instead of receiving a copy.
+    #[inline(never)]
+    fn row_spans_into(&self, y: u32, out: &mut heapless::Vec<Option<Span>, S>) {
         let full = Span {
             start: 0,
             end: self.width,
         };
-        let mut out = heapless::Vec::new();
+        out.clear();
         for s in &self.spheres {
             let span = if self.use_spans {
                 s.bounds.and_then(|b| b.on_row(y, self.height))
@@ -40,7 +49,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let pushed = out.push(span);
             debug_assert!(pushed.is_ok(), "more spans than spheres");
         }
-        out
     }
 
     /// The full-width kernel on the unnormalized primary direction `dir` of pixel `x`: one
@@ -59,7 +67,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// [`Self::direction`] where the narrow kernel is set up: every direction's components
     /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
     /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
-    /// same bits as [`Self::direction`].
+    /// same bits as [`Self::direction`]. Only the pixels the narrow kernel hands over need
+    /// it; on ARMv6-M, where its six products are long inline sequences, it is not inlined
+    /// into the pixel loop.
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn narrow_direction_wide(&self, x: u32, y: u32) -> V3<I16F48> {
         // |dx|, |dy| ≤ 2·MAX_DIMENSION + 1 < 2³¹.
         let dy = self.height as i32 - 2 * y as i32 - 1;
@@ -72,6 +83,43 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 + scale(dx, self.step_x[i].to_bits());
             I16F48::from_bits(v)
         })
+    }
+
+    /// Shades the pixels of the run from column `start` of `row` (`y`, the row's spans, the
+    /// encoding and the background) with the narrow kernel, and the full-width one where the
+    /// narrow one hands over, on that pixel's direction (exact whether stepped or computed
+    /// directly); `false` (nothing written) if the frame does not use the narrow kernel. Not
+    /// inlined, so the pixel loop is compiled apart from the row's set-up.
+    #[inline(never)]
+    fn narrow_pixels<P: Pixel>(
+        &self,
+        row: (u32, &[Option<Span>], Encoding, &Background<P>),
+        start: u32,
+        run_pixels: &mut [P],
+        precise_darks: bool,
+    ) -> bool {
+        let (y, spans, encoding, background) = row;
+        let mut narrow = NarrowRun::new();
+        let end = start + run_pixels.len() as u32;
+        if !self.narrow_run(&mut narrow, start, end, y, spans) {
+            return false;
+        }
+        let narrow = &mut narrow;
+        for (px, column) in run_pixels.iter_mut().zip(start..) {
+            let shaded = match self.narrow_shade(narrow, P::NEEDS_HITS, precise_darks) {
+                Narrow::Done(shaded) => shaded,
+                Narrow::Precise => {
+                    let dir = self.narrow_direction_wide(column, y);
+                    debug_assert_eq!(dir, self.direction(column, y));
+                    self.shade_ray(dir, column, spans, P::NEEDS_HITS)
+                }
+            };
+            *px = match shaded {
+                Some(s) => encode(s.color, s.hit, encoding, column, y),
+                None => background.at(column as usize),
+            };
+        }
+        true
     }
 
     /// The unnormalized primary direction of pixel `(x, y)`:
@@ -109,8 +157,10 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         encoding: Encoding,
     ) -> Result<(), RenderError> {
         check_segment(y, x, out.len(), self.width, self.height)?;
-        let spans = self.row_spans(y);
-        let runs = merge_runs::<S>(&spans);
+        let mut spans = heapless::Vec::new();
+        self.row_spans_into(y, &mut spans);
+        let mut runs = heapless::Vec::<Span, S>::new();
+        merge_runs_into(&spans, &mut runs);
         let background = Background::new(encoding, |x| {
             encode(self.background, HitRecord::default(), encoding, x, y)
         });
@@ -119,25 +169,8 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         // under a transfer with finer dark levels than linear ones (see `narrow_lights`).
         let precise_darks = encoding.transfer != Transfer::Linear;
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
-            let mut narrow = NarrowRun::new();
-            if self.narrow_run(&mut narrow, start as u32, y, &spans) {
-                // The narrow kernel, and the full-width one where the narrow one hands over,
-                // on that pixel's direction (exact whether stepped or computed directly).
-                for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
-                    let shaded = match self.narrow_shade(&narrow, P::NEEDS_HITS, precise_darks) {
-                        Narrow::Done(shaded) => shaded,
-                        Narrow::Precise => {
-                            let dir = self.narrow_direction_wide(column, y);
-                            debug_assert_eq!(dir, self.direction(column, y));
-                            self.shade_ray(dir, column, &spans, P::NEEDS_HITS)
-                        }
-                    };
-                    self.narrow_advance(&mut narrow);
-                    *px = match shaded {
-                        Some(s) => encode(s.color, s.hit, encoding, column, y),
-                        None => background.at(column as usize),
-                    };
-                }
+            let row = (y, &spans[..], encoding, &background);
+            if self.narrow_pixels(row, start as u32, run_pixels, precise_darks) {
                 return;
             }
             let mut dir = self.direction(start as u32, y);
