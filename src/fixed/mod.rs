@@ -91,8 +91,8 @@
 //! `oc × D` and `oc·D` advanced by one addition per pixel, about a dozen `MULS` for the
 //! normal, two table-and-Newton inverse square roots, and the full-width kernel below only
 //! for the pixels whose lobe needs its precision (the bright part of a narrow highlight). On
-//! the exponent series at 320×240 (`.ci/firmware`) a frame takes 11.0 M instructions on the
-//! Cortex-M0, 8.1 M on the Cortex-M4F and 8.6 M on the RV32IMAC, with the same bits on all
+//! the exponent series at 320×240 (`.ci/firmware`) a frame takes 9.7 M instructions on the
+//! Cortex-M0, 6.7 M on the Cortex-M4F and 7.0 M on the RV32IMAC, with the same bits on all
 //! three; 1.16 sphere-pixels are tested per covered pixel (`spans`).
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
