@@ -581,6 +581,70 @@ pub fn terms<T: Pow>(
     to_light: Vec3<T>,
     view: Vec3<T>,
 ) -> Terms<T> {
+    terms_with(p, masks, present, n, to_light, view, None)
+}
+
+#[doc(hidden)]
+/// What a sphere light changes in [`terms_with`]: the diffuse cosine comes from the light's
+/// whole sphere, and every specular lobe is widened by the light's angular radius.
+#[derive(Clone, Copy, Debug)]
+pub struct Area<T> {
+    /// Replaces `max(0, N·L)` in the diffuse term: the sphere's irradiance over that of
+    /// the point at its centre seen head-on (`cos θ` when the sphere is wholly above the
+    /// horizon).
+    pub diffuse_cos: T,
+    /// `sin α`, `α` the light's angular radius as seen from the surface point.
+    pub spread: T,
+}
+
+#[doc(hidden)]
+/// The energy factor of a lobe `max(0, c)^n` shaded at a sphere light's representative
+/// point: `1/(1 + α·√(πn′/2) + n′α²/2)`, `α` the light's angular radius (taken as
+/// `spread = sin α`), `n′ = n` for Phong (`c = R·V`) and `n/4` for Blinn-Phong (`N·H` moves
+/// half as fast as `L`).
+///
+/// Shading at the representative point spreads the lobe's peak over a disc of angular
+/// radius `α`: approximating the lobe by the Gaussian `exp(−n′θ²/2)` (solid angle
+/// `2π/n′`), the widened lobe covers `πα² + 2πα·√(π/(2n′)) + 2π/n′` (the disc, its rim
+/// times the Gaussian's one-sided width, the lobe itself), and this factor is the ratio of
+/// the two, so a bigger light reflects no more energy than a point of the same power
+/// (Karis's sphere-light normalization, *Real Shading in Unreal Engine 4*, 2013, with the
+/// widening computed for these lobes). At `α = 0` it is exactly 1.
+#[inline(always)]
+pub fn lobe_widening<T: Real>(n: T, spread: T, blinn: T::Mask) -> T {
+    let one = T::splat(1.0);
+    let n = T::select(blinn, n * T::splat(0.25), n);
+    let half_pi = T::splat(core::f32::consts::FRAC_PI_2);
+    one / (one + spread * (half_pi * n).sqrt() + T::splat(0.5) * n * spread * spread)
+}
+
+#[doc(hidden)]
+/// The energy factor of the GGX lobe at a sphere light's representative point: Karis's
+/// `(α/α′)²` with `α′ = min(1, α + sin α_L/2)` (the half vector moves half as fast as `L`),
+/// from `alpha2 = α²`.
+#[cfg(feature = "models")]
+#[inline(always)]
+pub fn ggx_widening<T: Real>(alpha2: T, spread: T) -> T {
+    let one = T::splat(1.0);
+    let wide = (alpha2.sqrt() + T::splat(0.5) * spread).min(one);
+    alpha2 / (wide * wide)
+}
+
+#[doc(hidden)]
+/// [`terms`], with a sphere light's changes when `area` is given (see [`Area`]): `to_light`
+/// is then the representative point's direction, every lobe carries its
+/// [`lobe_widening`] (or [`ggx_widening`]) and the diffuse term takes
+/// [`Area::diffuse_cos`] for `max(0, N·L)`. Without `area` this is [`terms`].
+#[inline(always)]
+pub fn terms_with<T: Pow>(
+    p: &Params<T>,
+    masks: &Masks<T>,
+    present: Present,
+    n: Vec3<T>,
+    to_light: Vec3<T>,
+    view: Vec3<T>,
+    area: Option<Area<T>>,
+) -> Terms<T> {
     let zero = T::splat(0.0);
     let n_dot_l = n.dot(to_light).max(zero);
     let cosine = specular_cosine(n, to_light, view, masks.blinn);
@@ -592,8 +656,15 @@ pub fn terms<T: Pow>(
     } else {
         zero
     };
+    let (lobe, diffuse_cos) = match area {
+        Some(a) => (
+            lobe * lobe_widening(p.shininess, a.spread, masks.blinn),
+            a.diffuse_cos,
+        ),
+        None => (lobe, n_dot_l),
+    };
     let classic = Terms {
-        diffuse: n_dot_l,
+        diffuse: diffuse_cos,
         specular: Vec3::new(lobe, lobe, lobe),
     };
     if !present.normalized {
@@ -602,25 +673,34 @@ pub fn terms<T: Pow>(
     let mut sum = p.weight[0] * lobe;
     if present.more_lobes && positive {
         for (w, e) in p.weight[1..].iter().zip(p.more_shininess) {
-            sum = sum + *w * T::pow_clamped(cosine, e);
+            let l = T::pow_clamped(cosine, e);
+            let l = match area {
+                Some(a) => l * lobe_widening(e, a.spread, masks.blinn),
+                None => l,
+            };
+            sum = sum + *w * l;
         }
     }
     #[cfg(feature = "models")]
     if present.ggx {
         let g = ggx(p.alpha2, n, to_light, view);
+        let g = match area {
+            Some(a) => g * ggx_widening(p.alpha2, a.spread),
+            None => g,
+        };
         sum = T::select(masks.ggx, p.weight[0] * g, sum);
     }
     #[cfg(feature = "models")]
     let diffuse = if present.oren_nayar {
         let n_dot_v = n.dot(view).max(zero);
         let l_dot_v = to_light.dot(view);
-        let on = oren_nayar(p.on_a, p.on_b, n_dot_l, n_dot_v, l_dot_v);
-        T::select(masks.oren_nayar, on, n_dot_l)
+        let on = oren_nayar(p.on_a, p.on_b, diffuse_cos, n_dot_v, l_dot_v);
+        T::select(masks.oren_nayar, on, diffuse_cos)
     } else {
-        n_dot_l
+        diffuse_cos
     };
     #[cfg(not(feature = "models"))]
-    let diffuse = n_dot_l;
+    let diffuse = diffuse_cos;
     let one = T::splat(1.0);
     let (f, diffuse_scale) = if present.schlick {
         let w = schlick_weight(half_angle_cosine(to_light, view));

@@ -78,6 +78,7 @@
 //! | feature | default | what it adds |
 //! |---|---|---|
 //! | `antialias` | on | `Prepared::with_antialiasing`: analytic anti-aliasing of the silhouettes on the float paths (see `src/float/edges.rs`); without it the float kernel holds no edge code |
+//! | `area-lights` | on | sphere lights (point lights with a `radius`) on the float paths (see `src/float/area.rs`): representative-point highlights, the sphere's irradiance, analytic soft shadows; without it the float kernel holds none of that code and the float paths refuse such a light with [`RenderError::SphereLight`], as the fixed path always does |
 //! | `models` | on | the Oren–Nayar and GGX models ([`Model::OrenNayar`], [`Model::Ggx`]) on every path; without it the kernels and prepares hold none of their code, and [`Scene::add_sphere`] refuses such a sphere with [`Problem::ModelNotBuilt`] (the variants exist either way) |
 //! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Bgr565`, `Rgb888`, `Gray8`), and `From` conversions both ways between those colours and shadeline's formats of the same names |
 //!

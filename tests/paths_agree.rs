@@ -146,6 +146,32 @@ fn random_scenes_are_bit_identical_across_widths_and_spans() {
     }
 }
 
+#[cfg(feature = "area-lights")]
+#[test]
+fn sphere_lights_are_bit_identical_across_widths_and_spans() {
+    for factor in [0.05f32, 0.2, 0.5, 1.0] {
+        let scene = spheres_in_a_row(factor * ROW_RADIUS).unwrap();
+        assert!(scene.sphere_light().is_some());
+        for (w, h) in [(96, 64), (7, 5), (67, 3)] {
+            assert_all_paths_identical(&scene, w, h, &format!("row, light {factor}r, {w}x{h}"));
+        }
+    }
+    // Every model, under sphere lights of several sizes.
+    let mut lit = 0;
+    for (i, scene) in random_scenes_all_models(24, 0x5eed_a4ea).iter().enumerate() {
+        let radius = [0.05f32, 0.3, 1.0][i % 3];
+        let scene = with_sphere_lights(scene, radius);
+        lit += scene.sphere_light().is_some() as usize;
+        assert_all_paths_identical(
+            &scene,
+            61,
+            43,
+            &format!("random scene {i}, lights {radius}"),
+        );
+    }
+    assert!(lit >= 10, "only {lit} scenes with a sphere light");
+}
+
 #[test]
 fn spans_skip_work_without_losing_pixels() {
     // The spans must actually exclude something on the exponent series, or the test above

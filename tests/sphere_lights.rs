@@ -4,6 +4,8 @@
 //! does, a tiny one is the point light, highlights widen and shadows soften as it grows, and
 //! the number of directions it takes is enough for half an 8-bit level.
 
+mod common;
+
 use shadeline::reference::{shade_pixel, shade_pixel_with_strata, RefPixel, SPHERE_LIGHT_STRATA};
 use shadeline::{
     Camera, Light, LinearRgb, Material, Model, Prepared, PreparedFixed, RenderError, Scalar, Scene,
@@ -287,16 +289,20 @@ fn the_reference_takes_enough_directions_for_half_a_level() {
 }
 
 #[test]
-fn the_fast_paths_refuse_a_sphere_light_and_take_radius_zero() {
+fn the_fixed_path_refuses_a_sphere_light_and_every_path_takes_radius_zero() {
     let area = scene(0.5, true, diffuse_ball());
-    assert_eq!(
-        Prepared::<Scalar, 2, 1>::new(&area, W, H).err(),
-        Some(RenderError::SphereLight { light: 0 })
-    );
     assert_eq!(
         PreparedFixed::new(&area, W, H).err(),
         Some(RenderError::SphereLight { light: 0 })
     );
+    // The float paths render it with `area-lights` and refuse it as the fixed path does
+    // without.
+    let float = Prepared::<Scalar, 2, 1>::new(&area, W, H).err();
+    if cfg!(feature = "area-lights") {
+        assert_eq!(float, None);
+    } else {
+        assert_eq!(float, Some(RenderError::SphereLight { light: 0 }));
+    }
     let message = RenderError::SphereLight { light: 0 }.to_string();
     assert!(
         message.contains("light 0") && message.contains("radius"),
@@ -305,4 +311,210 @@ fn the_fast_paths_refuse_a_sphere_light_and_take_radius_zero() {
     let point = scene(0.0, true, diffuse_ball());
     assert!(Prepared::<Scalar, 2, 1>::new(&point, W, H).is_ok());
     assert!(PreparedFixed::new(&point, W, H).is_ok());
+}
+
+/// The float paths' sphere lights against the reference: the scalar path's 8-bit frame of
+/// `spheres_in_a_row` per light radius (in sphere radii), and how it bends toward the point
+/// light as the radius shrinks.
+#[cfg(feature = "area-lights")]
+mod float_paths {
+    use super::*;
+    use shadeline::{HitRecord, Rgb888};
+
+    use super::common::{frame, spheres_in_a_row, ROW_RADIUS};
+
+    const RW: u32 = 96;
+    const RH: u32 = 64;
+
+    /// Per radius: the largest channel error in levels over pixels whose primary ray hits
+    /// the same sphere as the reference's, the share within one level and within
+    /// [`WIDE_LEVELS`], and the pixels compared.
+    struct Row {
+        max: u16,
+        within_one: f64,
+        within_wide: f64,
+        pixels: usize,
+    }
+
+    /// The looser of the two shares the budget states.
+    const WIDE_LEVELS: u16 = 8;
+
+    fn compare(factor: f32) -> Row {
+        let s = spheres_in_a_row(factor * ROW_RADIUS).unwrap();
+        let scalar = Prepared::<Scalar, 8, 2>::new(&s, RW, RH).unwrap();
+        let colors: Vec<Rgb888> = frame(&scalar);
+        let hits: Vec<HitRecord> = frame(&scalar);
+        let (mut max, mut one, mut wide, mut pixels) = (0u16, 0usize, 0usize, 0usize);
+        for y in 0..RH {
+            for x in 0..RW {
+                let i = (y * RW + x) as usize;
+                let want = shade_pixel(&s, RW, RH, x, y);
+                if want.hit.sphere != hits[i].sphere {
+                    continue;
+                }
+                let c = colors[i];
+                let levels = [c.r, c.g, c.b]
+                    .iter()
+                    .zip(want.color)
+                    .map(|(&got, w)| {
+                        (got as i32 - shadeline::reference::quantize(w, 255.0) as i32)
+                            .unsigned_abs() as u16
+                    })
+                    .max()
+                    .unwrap_or(0);
+                max = max.max(levels);
+                one += (levels <= 1) as usize;
+                wide += (levels <= WIDE_LEVELS) as usize;
+                pixels += 1;
+            }
+        }
+        Row {
+            max,
+            within_one: one as f64 / pixels as f64,
+            within_wide: wide as f64 / pixels as f64,
+            pixels,
+        }
+    }
+
+    /// The budget per light radius (in sphere radii): largest error in levels, and the
+    /// least shares within one level and within [`WIDE_LEVELS`].
+    const BUDGET: [(f32, u16, f64, f64); 4] = [
+        (0.05, 6, 0.995, 1.0),
+        (0.2, 6, 0.995, 1.0),
+        (0.5, 6, 0.995, 1.0),
+        (1.0, 6, 0.995, 1.0),
+    ];
+
+    #[test]
+    fn the_scalar_path_agrees_with_the_reference_per_light_radius() {
+        println!(
+            "light radius | pixels | max levels | within 1 level | within {WIDE_LEVELS} levels"
+        );
+        println!("---|---|---|---|---");
+        let mut failures = Vec::new();
+        for (factor, max, one, wide) in BUDGET {
+            let r = compare(factor);
+            println!(
+                "{factor} × r | {} | {} | {:.2} % | {:.2} %",
+                r.pixels,
+                r.max,
+                100.0 * r.within_one,
+                100.0 * r.within_wide
+            );
+            assert!(
+                r.pixels > (RW * RH) as usize * 9 / 10,
+                "{} pixels",
+                r.pixels
+            );
+            if r.max > max || r.within_one < one || r.within_wide < wide {
+                failures.push(factor);
+            }
+        }
+        assert!(
+            failures.is_empty(),
+            "over budget at light radius {failures:?}"
+        );
+    }
+
+    /// Floor pixels lit to between 5% and 95% of what the light alone gives them with no
+    /// sphere of the row in the way, on the scalar path: the penumbra.
+    fn penumbra(factor: f32) -> usize {
+        let lit = |radius: f32| {
+            let s = spheres_in_a_row(radius).unwrap();
+            let p = Prepared::<Scalar, 8, 2>::new(&s, RW, RH).unwrap();
+            let colors: Vec<LinearRgb> = frame(&p);
+            let hits: Vec<HitRecord> = frame(&p);
+            (colors, hits)
+        };
+        let (with, hits) = lit(factor * ROW_RADIUS);
+        // The same frame with the light's power off: what the distant light alone gives.
+        let s = spheres_in_a_row(factor * ROW_RADIUS).unwrap();
+        let mut dark = Scene::<8, 2>::new(*s.camera(), s.background()).unwrap();
+        for sphere in s.spheres() {
+            dark.add_sphere(*sphere).unwrap();
+        }
+        dark.add_light(s.lights()[1]).unwrap();
+        let base: Vec<LinearRgb> = frame(&Prepared::<Scalar, 8, 2>::new(&dark, RW, RH).unwrap());
+        // Unshadowed light on the floor: the floor alone under the same lights.
+        let mut floor = Scene::<8, 2>::new(*s.camera(), s.background()).unwrap();
+        floor.add_sphere(s.spheres()[0]).unwrap();
+        floor.add_light(s.lights()[0]).unwrap();
+        let open: Vec<LinearRgb> = frame(&Prepared::<Scalar, 8, 2>::new(&floor, RW, RH).unwrap());
+        (0..with.len())
+            .filter(|&i| hits[i].sphere == Some(0) && open[i].r > 1e-3)
+            .filter(|&i| {
+                let ratio = (with[i].r - base[i].r) / open[i].r;
+                ratio > 0.05 && ratio < 0.95
+            })
+            .count()
+    }
+
+    #[test]
+    fn the_penumbra_widens_as_the_light_grows() {
+        let counts = [0.0f32, 0.05, 0.2, 0.5, 1.0].map(penumbra);
+        println!("penumbra pixels at light radius 0, 0.05, 0.2, 0.5, 1.0 × r: {counts:?}");
+        assert_eq!(counts[0], 0, "a point light casts a penumbra");
+        assert!(counts.windows(2).all(|w| w[0] < w[1]), "{counts:?}");
+    }
+
+    #[test]
+    fn a_tiny_sphere_light_is_the_point_light() {
+        let render = |radius: f32| {
+            let s = spheres_in_a_row(radius).unwrap();
+            let p = Prepared::<Scalar, 8, 2>::new(&s, RW, RH).unwrap();
+            let c: Vec<Rgb888> = frame(&p);
+            let h: Vec<HitRecord> = frame(&p);
+            (c, h)
+        };
+        let (point, point_hits) = render(0.0);
+        let (tiny, _) = render(1.0e-4);
+        // Off the shadows' edges: the pixel and its neighbours have one hit record under the
+        // point light.
+        let record = |x: i64, y: i64| {
+            (x >= 0 && y >= 0 && x < RW as i64 && y < RH as i64)
+                .then(|| point_hits[(y * RW as i64 + x) as usize])
+        };
+        let (mut inside, mut worst) = (0usize, 0u8);
+        for y in 0..RH as i64 {
+            for x in 0..RW as i64 {
+                let i = (y * RW as i64 + x) as usize;
+                let edge = [(1, 0), (-1, 0), (0, 1), (0, -1)]
+                    .iter()
+                    .any(|(dx, dy)| record(x + dx, y + dy).is_some_and(|h| h != point_hits[i]));
+                if edge {
+                    continue;
+                }
+                inside += 1;
+                let (a, b) = (point[i], tiny[i]);
+                worst = worst
+                    .max(a.r.abs_diff(b.r))
+                    .max(a.g.abs_diff(b.g))
+                    .max(a.b.abs_diff(b.b));
+            }
+        }
+        println!("{inside} pixels off the shadow edges: largest difference {worst} levels");
+        assert!(inside > (RW * RH) as usize * 8 / 10, "{inside} pixels");
+        assert!(worst <= 1, "{worst} levels");
+    }
+
+    /// Ball pixels whose specular term exceeds 1%, on the scalar path.
+    fn highlight(radius: f32) -> usize {
+        let s = scene(radius, true, shiny_ball());
+        let p = Prepared::<Scalar, 2, 1>::new(&s, W, H).unwrap();
+        let colors: Vec<LinearRgb> = frame(&p);
+        let hits: Vec<HitRecord> = frame(&p);
+        colors
+            .iter()
+            .zip(&hits)
+            .filter(|(c, h)| h.sphere == Some(1) && c.r > 0.01)
+            .count()
+    }
+
+    #[test]
+    fn the_highlight_widens_as_the_light_grows() {
+        let counts = [0.0f32, 0.6, 1.5].map(highlight);
+        println!("highlight pixels at radius 0, 0.6, 1.5 on the scalar path: {counts:?}");
+        assert!(counts[0] > 0, "no highlight at all");
+        assert!(counts[0] < counts[1] && counts[1] < counts[2], "{counts:?}");
+    }
 }

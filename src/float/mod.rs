@@ -10,6 +10,7 @@
 //! | `spans` | each sphere's analytic, conservative pixel span on a row |
 //! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
 //! | `kernel` | the per-pixel stages: `ray`, `hit`, `normal`, `lights` (`incoming`, `shadow`, `diffuse`, `specular`), `combine` |
+//! | `area` | sphere lights: the diffuse horizon, the covered share of the light's cap, `acos` |
 //! | `edges` | analytic anti-aliasing of the silhouettes: each outline's coverage of a pixel, and the blend |
 //! | `lane` | the lane trait: [`Real`](crate::real::Real) plus the operations only lanes have, each exactly specified |
 //! | `math` | the specular `pow`, identical at every width |
@@ -20,6 +21,8 @@
 //! x86-64 at the SSE2 baseline, AVX2 and the native CPU, on aarch64 with NEON and on wasm32
 //! with simd128: `.ci/bit-identity`).
 
+#[cfg(feature = "area-lights")]
+mod area;
 #[cfg(feature = "antialias")]
 mod edges;
 mod kernel;

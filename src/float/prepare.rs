@@ -154,6 +154,14 @@ pub(crate) enum PreparedLight {
     Distant { to_light: Vec3, arriving: Vec3 },
     /// `power`: `color · intensity / 4π`; arriving is `power / r²`.
     Point { position: Vec3, power: Vec3 },
+    /// A sphere light: a point light with a `radius` (see `area`); `power` as for
+    /// `Point`.
+    #[cfg(feature = "area-lights")]
+    Sphere {
+        position: Vec3,
+        power: Vec3,
+        radius: f32,
+    },
 }
 
 /// A scene prepared for rendering at one size on one float path (`W`).
@@ -209,7 +217,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             return Err(RenderError::BadSize { width, height });
         }
         // Refused up front, with the size: after this nothing fails, and the frame is built
-        // where it is returned.
+        // where it is returned. With `area-lights`, sphere lights render.
+        #[cfg(not(feature = "area-lights"))]
         if let Some(light) = scene.sphere_light() {
             return Err(RenderError::SphereLight { light });
         }
@@ -262,6 +271,18 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                         -unit.unwrap_or_default()
                     },
                     arriving: Vec3::new(color.r, color.g, color.b).scale(intensity),
+                },
+                #[cfg(feature = "area-lights")]
+                Light::Point {
+                    position,
+                    color,
+                    intensity,
+                    radius,
+                } if radius > 0.0 => PreparedLight::Sphere {
+                    position,
+                    power: Vec3::new(color.r, color.g, color.b)
+                        .scale(intensity / (4.0 * core::f32::consts::PI)),
+                    radius,
                 },
                 Light::Point {
                     position,

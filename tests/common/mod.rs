@@ -407,3 +407,119 @@ pub fn random_scenes_rough_models(n: usize, seed: u64) -> Vec<TestScene> {
 pub fn random_scenes_all_models(n: usize, seed: u64) -> Vec<TestScene> {
     draw(all_models_scene_strategy(), n, seed)
 }
+
+/// Five spheres in a row on a floor (a large sphere), lit from low along the row by one
+/// point light of radius `light_radius` (0: a point light) and a dim distant light from
+/// above, so that each sphere shadows the next and the floor: two classic Phong spheres
+/// (one shiny), a classic Blinn-Phong, a normalized Phong dielectric with an `ior` and a
+/// Lambert sphere. The row's spheres have radius [`ROW_RADIUS`].
+pub fn spheres_in_a_row(light_radius: f32) -> Result<Scene<8, 2>, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(0.5, 2.4, 7.5),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 38.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.03, 0.05))?;
+    scene.add_sphere(Sphere {
+        center: Vec3::new(0.0, -100.0 - ROW_RADIUS, 0.0),
+        radius: 100.0,
+        material: Material {
+            albedo: LinearRgb::new(0.7, 0.7, 0.65),
+            kd: 0.9,
+            ks: 0.1,
+            shininess: 8.0,
+            model: Model::Phong,
+        },
+    })?;
+    let classic = |albedo, ks, shininess, model| Material {
+        albedo,
+        kd: 0.8,
+        ks,
+        shininess,
+        model,
+    };
+    let materials = [
+        classic(LinearRgb::new(0.8, 0.2, 0.1), 0.6, 60.0, Model::Phong),
+        classic(LinearRgb::new(0.2, 0.7, 0.3), 0.3, 10.0, Model::Phong),
+        classic(LinearRgb::new(0.1, 0.4, 0.9), 0.6, 200.0, Model::BlinnPhong),
+        Material {
+            albedo: LinearRgb::new(0.9, 0.8, 0.2),
+            kd: 0.7,
+            ks: 0.3,
+            shininess: 80.0,
+            model: Model::NormalizedPhong(Specular {
+                surface: Surface::Dielectric { ior: Some(1.5) },
+                ..Specular::default()
+            }),
+        },
+        Material {
+            albedo: LinearRgb::new(0.8, 0.8, 0.8),
+            kd: 1.0,
+            ks: 0.0,
+            shininess: 1.0,
+            model: Model::Lambert,
+        },
+    ];
+    for (i, material) in materials.into_iter().enumerate() {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(-2.6 + 1.3 * i as f32, 0.0, 0.4 * (i % 2) as f32),
+            radius: ROW_RADIUS,
+            material,
+        })?;
+    }
+    let position = Vec3::new(6.0, 1.6, 1.5);
+    let d2 = (position - Vec3::new(2.6, 0.0, 0.0)).dot(position - Vec3::new(2.6, 0.0, 0.0));
+    scene.add_light(Light::Point {
+        position,
+        color: LinearRgb::new(1.0, 0.95, 0.85),
+        // About 0.8 arriving at the nearest sphere.
+        intensity: 4.0 * core::f32::consts::PI * d2 * 0.8,
+        radius: light_radius,
+    })?;
+    scene.add_light(Light::Distant {
+        direction: Vec3::new(-0.2, -1.0, -0.3),
+        color: LinearRgb::new(0.6, 0.7, 1.0),
+        intensity: 0.15,
+    })?;
+    Ok(scene)
+}
+
+/// The radius of the spheres of [`spheres_in_a_row`].
+pub const ROW_RADIUS: f32 = 0.5;
+
+/// `scene` with every point light given the radius `radius`, or the largest of `radius/2`,
+/// `radius/4`, … (down to `radius/64`) that keeps it clear of the spheres, or 0.
+pub fn with_sphere_lights<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    radius: f32,
+) -> Scene<S, L> {
+    let mut out = Scene::<S, L>::new(*scene.camera(), scene.background()).expect("valid camera");
+    for s in scene.spheres() {
+        out.add_sphere(*s).expect("valid sphere");
+    }
+    for light in scene.lights() {
+        let mut r = radius;
+        loop {
+            let l = match *light {
+                Light::Point {
+                    position,
+                    color,
+                    intensity,
+                    ..
+                } => Light::Point {
+                    position,
+                    color,
+                    intensity,
+                    radius: r,
+                },
+                other => other,
+            };
+            if out.add_light(l).is_ok() {
+                break;
+            }
+            r = if r > radius / 64.0 { r / 2.0 } else { 0.0 };
+        }
+    }
+    out
+}
