@@ -327,6 +327,69 @@ pub fn full_moon() -> Result<Scene<2, 1>, SceneError> {
     Ok(scene)
 }
 
+/// The area-lights scene's image size: 640 × 320.
+pub const AREA_LIGHTS_SIZE: (u32, u32) = (640, 320);
+
+/// The radius of [`area_lights`]'s sphere light.
+pub const AREA_LIGHT_RADIUS: f32 = 1.5;
+
+/// Four spheres on a row on a grey floor (a sphere of radius 100), lit from the right and
+/// above by one sphere light of radius `light_radius` ([`AREA_LIGHT_RADIUS`] in the scene
+/// file; 0 is the point light at its centre, for comparison): each sphere casts its shadow
+/// onto its left neighbour and the floor, with a penumbra that widens away from the caster.
+/// Left to right, normalized Blinn-Phong plastics of exponent 20, 100, 500 and 2,500: the
+/// shinier, the more the sphere light widens the highlight over the point light's (for a
+/// lobe narrower than the light, the highlight is the light's reflected image). The same
+/// numbers are in `scenes/area-lights.toml`.
+///
+/// Without the feature `area-lights` a radius above 0 renders on no fast path (they refuse
+/// it with [`RenderError::SphereLight`](crate::RenderError)); the `f64` reference renders it.
+pub fn area_lights(light_radius: f32) -> Result<Scene<5, 1>, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(0.0, 2.5, 10.0),
+        look_at: Vec3::new(0.0, 0.6, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 24.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.02, 0.02, 0.03))?;
+    scene.add_light(Light::Point {
+        position: Vec3::new(8.0, 5.0, 3.0),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 3000.0,
+        radius: light_radius,
+    })?;
+    scene.add_sphere(Sphere {
+        center: Vec3::new(0.0, -100.0, 0.0),
+        radius: 100.0,
+        material: Material {
+            albedo: LinearRgb::new(0.5, 0.5, 0.5),
+            kd: 1.0,
+            ks: 0.0,
+            shininess: 1.0,
+            model: Model::Lambert,
+        },
+    })?;
+    for (x, n, albedo) in [
+        (-3.3, 20.0, LinearRgb::new(0.7, 0.12, 0.1)),
+        (-1.1, 100.0, LinearRgb::new(0.12, 0.5, 0.15)),
+        (1.1, 500.0, LinearRgb::new(0.1, 0.2, 0.7)),
+        (3.3, 2500.0, LinearRgb::new(0.6, 0.5, 0.1)),
+    ] {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, 0.9, 0.0),
+            radius: 0.9,
+            material: Material {
+                albedo,
+                kd: 0.8,
+                ks: 0.2,
+                shininess: n,
+                model: Model::NormalizedBlinnPhong(crate::scene::Specular::default()),
+            },
+        })?;
+    }
+    Ok(scene)
+}
+
 /// The galleries' stage: a camera on the `z` axis at `distance`, looking at the origin with a
 /// 28° field of view, a near-black background, a white key light from the upper right and a
 /// warm fill from the left.

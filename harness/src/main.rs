@@ -2,7 +2,7 @@
 //! `f64` reference.
 //!
 //! ```text
-//! shadeline render  [SCENE.toml | --preset exponent-series|materials|microfacets|full-moon]
+//! shadeline render  [SCENE.toml | --preset exponent-series|materials|microfacets|full-moon|area-lights]
 //!                   [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
 //!                   [--threads N] [--width W] [--height H] [--repeat N]
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
@@ -17,7 +17,9 @@
 //! 768×432), `--preset microfacets` sets GGX and Oren–Nayar next to their normalized
 //! counterparts (`scenes/microfacets.toml`, 960×480), and `--preset full-moon` is a Lambert
 //! and an Oren–Nayar sphere lit from behind the viewer (`scenes/full-moon.toml`, 640×320);
-//! the fixed path refuses the last two (it has no Oren–Nayar or GGX). Without a scene file or preset all three use the built-in exponent series (the numbers of
+//! `--preset area-lights` is four spheres of growing shininess under one sphere light
+//! (`scenes/area-lights.toml`, 640×320), which the fixed path refuses (it renders point
+//! lights of radius 0 only). Without a scene file or preset all three use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file is reported as one line
 //! `FILE:LINE:COL: error: …` on stderr, with exit code 2; so is a bad size or a frame too
 //! large for the memory, as one `error: …` line (the message names the size; buffers are
@@ -30,7 +32,7 @@
 
 use clap::builder::PossibleValuesParser;
 use clap::{Args, Parser, Subcommand};
-use shadeline::MAX_DIMENSION;
+use shadeline::{Rgb888, MAX_DIMENSION};
 use shadeline_harness::compare::{self, Row};
 use shadeline_harness::edges::{self, EdgeRow};
 use shadeline_harness::image::PngFile;
@@ -101,7 +103,7 @@ struct SceneChoice {
     /// A scene file (TOML); without one (and without `--preset`), the built-in exponent series.
     scene: Option<PathBuf>,
     /// A built-in scene instead of a file: `exponent-series`, `materials` (the gallery of
-    /// reflection models), `microfacets` (GGX and Oren–Nayar) or `full-moon`.
+    /// reflection models), `microfacets` (GGX and Oren–Nayar), `full-moon` or `area-lights`.
     #[arg(long, value_parser = PossibleValuesParser::new(PRESETS))]
     preset: Option<String>,
 }
@@ -339,7 +341,15 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     let ref_rgb = compare::reference_rgb(&reference);
     let mut rows = Vec::new();
     let mut images = Vec::new();
+    let mut refusals = Vec::new();
     for path in PATHS {
+        // A path that does not render something the scene holds (the fixed path and a
+        // sphere light) is reported and left out, not the end of the comparison.
+        if let Err(PrepareError::Render(e)) = (path.prepare)(scene, w, h, sharp) {
+            refusals.push(format!("{:<8} refused: {e}", path.name));
+            images.push(vec![Rgb888::default(); w as usize * h as usize]);
+            continue;
+        }
         let mut times = Vec::new();
         let mut rgb = Vec::new();
         for _ in 0..RUNS {
@@ -367,10 +377,14 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         if threads == 1 { "" } else { "s" }
     );
     print!("{}", compare::table(&rows));
+    for refusal in &refusals {
+        println!("{refusal}");
+    }
     png.write_image(&compare::picture(w, h, &ref_rgb, &images))
         .map_err(write_failed(output))?;
     println!(
-        "wrote {} (top: reference | {}; below each path: |path - reference| x {})",
+        "wrote {} (top: reference | {}; below each path: |path - reference| x {}; a path \
+         that refused the scene is black)",
         output.display(),
         PATHS.iter().map(|p| p.name).collect::<Vec<_>>().join(" | "),
         compare::DIFF_GAIN

@@ -593,12 +593,19 @@ pub fn builtin_scene() -> Result<SceneFile, SceneError> {
 }
 
 /// The names [`preset`] knows.
-pub const PRESETS: [&str; 4] = ["exponent-series", "materials", "microfacets", "full-moon"];
+pub const PRESETS: [&str; 5] = [
+    "exponent-series",
+    "materials",
+    "microfacets",
+    "full-moon",
+    "area-lights",
+];
 
 /// A built-in scene by name (see [`PRESETS`]) in a [`FileScene`], at its scene file's size:
 /// `exponent-series` ([`shadeline::exponent_series`]), `materials`
-/// ([`shadeline::materials`]), `microfacets` ([`shadeline::microfacets`]) or `full-moon`
-/// ([`shadeline::full_moon`]).
+/// ([`shadeline::materials`]), `microfacets` ([`shadeline::microfacets`]), `full-moon`
+/// ([`shadeline::full_moon`]) or `area-lights` ([`shadeline::area_lights`] with its sphere
+/// light of radius [`shadeline::AREA_LIGHT_RADIUS`]).
 pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
     match name {
         "exponent-series" => Some(
@@ -614,6 +621,10 @@ pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
         "full-moon" => {
             Some(shadeline::full_moon().and_then(|s| to_file_scene(&s, shadeline::FULL_MOON_SIZE)))
         }
+        "area-lights" => Some(
+            shadeline::area_lights(shadeline::AREA_LIGHT_RADIUS)
+                .and_then(|s| to_file_scene(&s, shadeline::AREA_LIGHTS_SIZE)),
+        ),
         _ => None,
     }
 }

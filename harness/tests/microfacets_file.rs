@@ -1,4 +1,4 @@
-//! The microfacet gallery and full-moon scene files: each is its built-in preset, and the
+//! The microfacet gallery, full-moon and area-lights scene files: each is its built-in preset, and the
 //! keys of the two models have located errors for nonsense.
 
 use shadeline_harness::{parse_scene, SceneFileError};
@@ -36,6 +36,18 @@ fn the_committed_microfacets_file_is_the_built_in_gallery() {
     for s in builtin.spheres() {
         assert!(s.material.is_energy_conserving(), "{:?}", s.material);
     }
+}
+
+#[test]
+fn the_committed_area_lights_file_is_the_built_in_scene() {
+    let file = parse_scene(&text("area-lights.toml")).unwrap();
+    let builtin = shadeline::area_lights(shadeline::AREA_LIGHT_RADIUS).unwrap();
+    assert_eq!((file.width, file.height), shadeline::AREA_LIGHTS_SIZE);
+    assert_eq!(file.scene.camera(), builtin.camera());
+    assert_eq!(file.scene.background(), builtin.background());
+    assert_eq!(file.scene.spheres(), builtin.spheres());
+    assert_eq!(file.scene.lights(), builtin.lights());
+    assert_eq!(builtin.sphere_light(), Some(0));
 }
 
 #[test]
