@@ -12,6 +12,9 @@
 //!   (classic Phong, normalized Blinn-Phong with Fresnel, Oren–Nayar, GGX plastic, GGX gold),
 //!   two lights; and `frame/microfacets`, the microfacet gallery; each on the fixed path
 //!   too (`fixed`).
+//! - `frame/area-lights`: the area-lights preset at its size, under its sphere light
+//!   (`sphere-light`) and under a point light at the same place (`point-light`): the cost of
+//!   soft shadows and widened lobes (float paths only: the fixed path has no sphere lights).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use shadeline::*;
@@ -298,6 +301,16 @@ fn benches(c: &mut Criterion) {
         (320, 160),
         "320x160",
     );
+    for (id, radius) in [("sphere-light", AREA_LIGHT_RADIUS), ("point-light", 0.0)] {
+        bench_paths(
+            c,
+            "frame/area-lights",
+            &area_lights(radius).unwrap(),
+            AREA_LIGHTS_SIZE,
+            id,
+            (true, false),
+        );
+    }
 }
 
 criterion_group! {
