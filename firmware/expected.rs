@@ -45,3 +45,20 @@ pub const MICROFACETS_SCALAR_COVERED: u64 = 38_796;
 pub const MICROFACETS_FIXED_RGB565_CRC32: u32 = 0x0227_dcea;
 /// Pixels of that frame whose primary ray hits a sphere on the fixed path.
 pub const MICROFACETS_FIXED_COVERED: u64 = 38_796;
+
+/// Size of the area-lights frames (`shadeline::area_lights`, whose own size is 640×320):
+/// half of it in each direction, which the M4F's framebuffer holds.
+pub const AREA_LIGHTS_WIDTH: u32 = 320;
+/// Height of the area-lights frames.
+pub const AREA_LIGHTS_HEIGHT: u32 = 160;
+
+/// CRC32 of the area-lights preset under its sphere light (`shadeline::AREA_LIGHT_RADIUS`)
+/// at 320×160 rendered by `Prepared::<Scalar, 5, 1>` into `Rgb565`: the M4F firmware's
+/// `scalar-sphere-light` run (feature `area-lights`; reported, not budgeted).
+pub const AREA_LIGHTS_SPHERE_RGB565_CRC32: u32 = 0xdddc_f1b9;
+/// CRC32 of the same frame under a point light at the light sphere's centre (radius 0):
+/// `scalar-point-light`.
+pub const AREA_LIGHTS_POINT_RGB565_CRC32: u32 = 0xbf38_9e03;
+/// Pixels of either frame whose primary ray hits a sphere (the light's size changes no
+/// primary ray).
+pub const AREA_LIGHTS_COVERED: u64 = 36_588;

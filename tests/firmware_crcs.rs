@@ -117,3 +117,30 @@ fn microfacet_gallery_crc_and_covered_count_match_the_firmware_constants() {
         "host fixed microfacets CRC {crc:#010x}, covered {hits}: update firmware/expected.rs"
     );
 }
+
+#[cfg(feature = "area-lights")]
+#[test]
+fn area_lights_crcs_and_covered_count_match_the_firmware_constants() {
+    let (w, h) = (expected::AREA_LIGHTS_WIDTH, expected::AREA_LIGHTS_HEIGHT);
+    let mut found = Vec::new();
+    for radius in [shadeline::AREA_LIGHT_RADIUS, 0.0] {
+        let scene = shadeline::area_lights(radius).expect("built-in scene is valid");
+        let path = Prepared::<Scalar, 5, 1>::new(&scene, w, h).unwrap();
+        found.push((rgb565_crc32(&frame(&path)), covered(&path)));
+    }
+    let [(sphere, covered_sphere), (point, covered_point)] = found[..] else {
+        unreachable!("two radii")
+    };
+    assert_eq!(
+        (sphere, point, covered_sphere, covered_point),
+        (
+            expected::AREA_LIGHTS_SPHERE_RGB565_CRC32,
+            expected::AREA_LIGHTS_POINT_RGB565_CRC32,
+            expected::AREA_LIGHTS_COVERED,
+            expected::AREA_LIGHTS_COVERED
+        ),
+        "host area-lights CRCs (sphere light {sphere:#010x}, point light {point:#010x}), \
+         covered ({covered_sphere}, {covered_point}): update firmware/expected.rs"
+    );
+    assert_ne!(sphere, point, "the sphere light changes the frame");
+}

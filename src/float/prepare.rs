@@ -205,6 +205,10 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// The side of a pixel on the image plane (at distance 1 from the eye).
     #[cfg(feature = "antialias")]
     pub(crate) pixel: f32,
+    /// Whether a light is a sphere light: the kernel's light loop has its sphere-light
+    /// branch only in frames that need it.
+    #[cfg(feature = "area-lights")]
+    pub(crate) sphere_lights: bool,
     _path: PhantomData<W>,
 }
 
@@ -309,6 +313,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             let pushed = casters.push(per_light);
             debug_assert!(pushed.is_ok(), "more caster masks than spheres");
         }
+        #[cfg(feature = "area-lights")]
+        let sphere_lights = lights
+            .iter()
+            .any(|l| matches!(l, PreparedLight::Sphere { .. }));
         Ok(Prepared {
             width,
             height,
@@ -330,6 +338,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             antialias: false,
             #[cfg(feature = "antialias")]
             pixel,
+            #[cfg(feature = "area-lights")]
+            sphere_lights,
             _path: PhantomData,
         })
     }

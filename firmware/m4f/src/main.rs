@@ -9,7 +9,10 @@
 //! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
 //! (`scalar-aa`); with the feature `microfacets`, it also renders the microfacet gallery
 //! (GGX and Oren–Nayar spheres next to normalized Blinn-Phong and Lambert ones) on the
-//! scalar and the fixed path (`scalar-microfacets`, `fixed-microfacets`).
+//! scalar and the fixed path (`scalar-microfacets`, `fixed-microfacets`); with the feature
+//! `area-lights`, it also renders the area-lights preset on the scalar path under its sphere
+//! light and under a point light at the same place (`scalar-sphere-light`,
+//! `scalar-point-light`).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -87,6 +90,14 @@ fn main() -> ! {
     static mut MICRO: Option<Prepared<M4fScalar>> = None;
     #[cfg(feature = "microfacets")]
     static mut MICRO_FIXED: PreparedFixed = PreparedFixed::EMPTY;
+    #[cfg(feature = "area-lights")]
+    static mut AREA_SCENE: Option<Scene<5, 1>> = None;
+    #[cfg(feature = "area-lights")]
+    static mut AREA: Option<Prepared<M4fScalar, 5, 1>> = None;
+    #[cfg(feature = "area-lights")]
+    static mut POINT_SCENE: Option<Scene<5, 1>> = None;
+    #[cfg(feature = "area-lights")]
+    static mut POINT: Option<Prepared<M4fScalar, 5, 1>> = None;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -160,6 +171,46 @@ fn main() -> ! {
                 session.note("shadeline-fw error=prepare-fixed-microfacets\n");
                 session.fail();
             }
+        }
+    }
+    #[cfg(feature = "area-lights")]
+    {
+        use common::expected::{
+            AREA_LIGHTS_COVERED, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_POINT_RGB565_CRC32,
+            AREA_LIGHTS_SPHERE_RGB565_CRC32, AREA_LIGHTS_WIDTH,
+        };
+        let runs = [
+            (
+                "scalar-sphere-light",
+                AREA_SCENE,
+                AREA,
+                shadeline::AREA_LIGHT_RADIUS,
+                AREA_LIGHTS_SPHERE_RGB565_CRC32,
+            ),
+            (
+                "scalar-point-light",
+                POINT_SCENE,
+                POINT,
+                0.0,
+                AREA_LIGHTS_POINT_RGB565_CRC32,
+            ),
+        ];
+        for (name, scene_slot, slot, radius, crc) in runs {
+            let (Some(scene), _) = session.build(scene_slot, || shadeline::area_lights(radius))
+            else {
+                session.note("shadeline-fw error=scene-area-lights\n");
+                exit(false)
+            };
+            session.build_and_run(
+                name,
+                slot,
+                || Prepared::<M4fScalar, 5, 1>::new(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT),
+                Sink::Frame(&mut FRAME[..(AREA_LIGHTS_WIDTH * AREA_LIGHTS_HEIGHT) as usize]),
+                Expected {
+                    crc,
+                    covered: AREA_LIGHTS_COVERED,
+                },
+            );
         }
     }
     match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
