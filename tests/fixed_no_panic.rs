@@ -13,8 +13,7 @@
 //! rendered in every format (Rgb565, Bgr565, Rgb888, Gray8, hit records, byte rows) with one
 //! of the four encodings.
 
-mod common;
-use common::*;
+use crate::common::*;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngSeed, TestRunner};

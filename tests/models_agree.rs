@@ -14,8 +14,7 @@
 //! moon, the rough-models gallery and the same random scenes. Run with `-- --nocapture` for
 //! the tables.
 
-mod common;
-use common::*;
+use crate::common::*;
 use shadeline::*;
 
 fn bits(frame: &[LinearRgb]) -> Vec<[u32; 3]> {

@@ -2,8 +2,7 @@
 //! agree (same sphere hit, same lights blocked), every channel is within one 8-bit level;
 //! pixels whose decisions differ are at most 0.05 % of a frame.
 
-mod common;
-use common::*;
+use crate::common::{self, *};
 use shadeline::*;
 
 const MAX_DIFFER_SHARE: f64 = 0.0005;

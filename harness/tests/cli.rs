@@ -1,8 +1,6 @@
 //! The `shadeline` binary, run as a user would: exit codes, messages, and the PNGs it writes.
 
-mod common;
-
-use common::{shadeline, stderr};
+use crate::common::{self, shadeline, stderr};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

@@ -5,9 +5,8 @@ use shadeline::{Model, Sphere};
 use shadeline_harness::parse_scene;
 use shadeline_harness::plot::{self, CURVE_SAMPLES, LOBE_SAMPLES, LOBE_STEP};
 use shadeline_harness::scene_file::builtin_scene;
-mod common;
 
-use common::{shadeline, stderr};
+use crate::common::{self, shadeline, stderr};
 use std::path::PathBuf;
 
 /// The exponents of the specular lobes the spheres have, distinct: lobe 0 unless the model
