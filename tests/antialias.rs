@@ -5,7 +5,9 @@
 
 #![cfg(feature = "antialias")]
 
-use crate::common::{frame, random_scenes, random_scenes_all_models};
+mod common;
+
+use common::{frame, random_scenes, random_scenes_all_models};
 use shadeline::*;
 
 /// Frames of a scene at a size with anti-aliasing on, on the three float widths.

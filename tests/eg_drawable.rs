@@ -9,7 +9,8 @@
 //! the feature on for every test build, so `cargo test --workspace` runs these tests, and a
 //! build without the feature fails here instead of skipping them.
 
-use crate::common::*;
+mod common;
+use common::*;
 use embedded_graphics_core::pixelcolor::{self, PixelColor};
 use embedded_graphics_core::pixelcolor::{GrayColor, IntoStorage, RgbColor};
 use embedded_graphics_core::prelude::*;

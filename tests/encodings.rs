@@ -11,7 +11,8 @@
 //! CI runs this file on the default target CPU and, with `.ci/bit-identity`, on the SSE2
 //! baseline, with `-C target-cpu=native`, on aarch64 (NEON) and on wasm32 (simd128).
 
-use crate::common::*;
+mod common;
+use common::*;
 use shadeline::encoding::{encode_levels, linear_code, linear_code_fixed};
 use shadeline::*;
 
@@ -250,7 +251,7 @@ fn crc_gray8(pixels: &[Gray8]) -> u32 {
 
 /// Golden CRC32s of the exponent series at 320×240 with dithering, per encoding and format:
 /// `[linear dithered RGB565, sRGB dithered RGB565, sRGB dithered Gray8]`. Printed by
-/// `cargo test --test integration encodings::dithered -- --nocapture` on x86_64 and copied here.
+/// `cargo test --test encodings golden -- --nocapture` on x86_64 and copied here.
 const GOLDEN_SCALAR_DITHERED: [u32; 3] = [0xb13b_70b5, 0x39e7_519d, 0x2142_2168];
 /// The same frames on the fixed path (integers only: the same bits on every target).
 const GOLDEN_FIXED_DITHERED: [u32; 3] = [0xc7d9_921a, 0xf153_1e0e, 0x1070_f6f0];

@@ -4,11 +4,12 @@
 //! How they were produced: this test renders each scene on the fixed path into `Rgb565`,
 //! row-major, takes every pixel's `u16` as two little-endian bytes, and runs CRC-32 (IEEE,
 //! `crc32fast`) over them; the values were printed by
-//! `cargo test --test integration fixed_golden:: -- --nocapture` on x86_64 and copied here.
-//! A change is only right if the fixed kernel's arithmetic was changed on purpose, and then
-//! every target's value changes with it.
+//! `cargo test --test fixed_golden -- --nocapture` on x86_64 and copied here. A change is
+//! only right if the fixed kernel's arithmetic was changed on purpose, and then every
+//! target's value changes with it.
 
-use crate::common::*;
+mod common;
+use common::*;
 use shadeline::*;
 
 /// The exponent series at 320×240.

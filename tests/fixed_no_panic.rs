@@ -13,7 +13,8 @@
 //! rendered in every format (Rgb565, Bgr565, Rgb888, Gray8, hit records, byte rows) with one
 //! of the four encodings.
 
-use crate::common::*;
+mod common;
+use common::*;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;
 use proptest::test_runner::{Config, RngSeed, TestRunner};

@@ -2,7 +2,8 @@
 //! in any order give the same frame, bad requests and out-of-range scenes are refused with
 //! the same typed errors as the float path.
 
-use crate::common::*;
+mod common;
+use common::*;
 use shadeline::*;
 
 /// A pixel format that keeps everything the fixed kernel produced: the raw U16F16 colour and

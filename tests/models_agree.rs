@@ -14,7 +14,8 @@
 //! moon, the rough-models gallery and the same random scenes. Run with `-- --nocapture` for
 //! the tables.
 
-use crate::common::*;
+mod common;
+use common::*;
 use shadeline::*;
 
 fn bits(frame: &[LinearRgb]) -> Vec<[u32; 3]> {

@@ -2,7 +2,8 @@
 //! them (an untinted highlight, a point light's `colour·intensity / (4π r²)`), what its two
 //! pictures of the exponent series show, and the facts it repeats from `Cargo.toml`.
 
-use crate::common::*;
+mod common;
+use common::*;
 use shadeline::*;
 
 fn grey_box_camera(z: f32, vfov_degrees: f32) -> Camera {

@@ -2,7 +2,8 @@
 //! agree (same sphere hit, same lights blocked), every channel is within one 8-bit level;
 //! pixels whose decisions differ are at most 0.05 % of a frame.
 
-use crate::common::{self, *};
+mod common;
+use common::*;
 use shadeline::*;
 
 const MAX_DIFFER_SHARE: f64 = 0.0005;

@@ -1,6 +1,8 @@
 //! The `shadeline` binary, run as a user would: exit codes, messages, and the PNGs it writes.
 
-use crate::common::{self, shadeline, stderr};
+mod common;
+
+use common::{shadeline, stderr};
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 

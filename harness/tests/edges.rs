@@ -5,7 +5,7 @@
 //! silhouette pixels within 8 levels of the truth. The largest error is printed, not
 //! compared: where a shadow's edge crosses a silhouette pixel, supersampling smooths the
 //! shadow's edge too, and the analytic edges (which smooth outlines only) keep it hard.
-//! `cargo test -p shadeline-harness --test integration edges:: -- --nocapture` prints the tables.
+//! `cargo test -p shadeline-harness --test edges -- --nocapture` prints the tables.
 
 use shadeline::{
     Camera, Light, LinearRgb, Material, Model, Prepared, Render, Rgb888, Scalar, Sphere, Vec3,

@@ -5,8 +5,9 @@ use shadeline::{Model, Sphere};
 use shadeline_harness::parse_scene;
 use shadeline_harness::plot::{self, CURVE_SAMPLES, LOBE_SAMPLES, LOBE_STEP};
 use shadeline_harness::scene_file::builtin_scene;
+mod common;
 
-use crate::common::{self, shadeline, stderr};
+use common::{shadeline, stderr};
 use std::path::PathBuf;
 
 /// The exponents of the specular lobes the spheres have, distinct: lobe 0 unless the model
