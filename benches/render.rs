@@ -8,9 +8,9 @@
 //! - `kernel/*`: the shading kernel on fully covered packets: one sphere fills the view, so
 //!   every packet is shaded and the row driver's share is negligible.
 //! - `lights/*`, `spheres/*`, `size/*`: how cost scales with lights, spheres and pixels.
-//! - `model/*`: the covered frame of `kernel/*` with its one sphere in each reflection model
-//!   (classic Phong, normalized Blinn-Phong with Fresnel, Oren–Nayar, GGX plastic, GGX gold),
-//!   two lights; and `frame/microfacets`, the microfacet gallery; each on the fixed path
+//! - `model/*`: `shadeline::covered_sphere` (one sphere covering the frame, two lights) in
+//!   each of `shadeline::model_samples` (classic Phong, normalized Blinn-Phong with Fresnel,
+//!   Oren–Nayar, GGX plastic, GGX gold), the frames of the M4F firmware's per-model runs; and `frame/microfacets`, the microfacet gallery; each on the fixed path
 //!   too (`fixed`).
 //! - `frame/area-lights`: the area-lights preset at its size, under its sphere light
 //!   (`sphere-light`) and under a point light at the same place (`point-light`): the cost of
@@ -118,76 +118,6 @@ fn covered(lights: usize) -> Scene<32, 8> {
     scene
 }
 
-/// [`covered`] with two lights and its sphere in `material`.
-fn covered_in(material: Material) -> Scene<32, 8> {
-    let base = covered(2);
-    let mut scene = Scene::new(*base.camera(), base.background()).unwrap();
-    scene
-        .add_sphere(Sphere {
-            material,
-            ..base.spheres()[0]
-        })
-        .unwrap();
-    for l in base.lights() {
-        scene.add_light(*l).unwrap();
-    }
-    scene
-}
-
-/// One material per model, as the `model/*` benchmarks name them.
-fn every_model() -> [(&'static str, Material); 5] {
-    let plastic = Material {
-        albedo: LinearRgb::new(0.7, 0.1, 0.08),
-        kd: 0.7,
-        ks: 0.3,
-        shininess: 30.0,
-        model: Model::Phong,
-    };
-    let fresnel = Surface::Dielectric { ior: Some(1.5) };
-    let ggx = |surface| {
-        Model::Ggx(Microfacet {
-            roughness: 0.5,
-            surface,
-        })
-    };
-    [
-        ("phong", plastic),
-        (
-            "normalized-blinn-phong",
-            Material {
-                model: Model::NormalizedBlinnPhong(Specular {
-                    surface: fresnel,
-                    ..Specular::default()
-                }),
-                ..plastic
-            },
-        ),
-        (
-            "oren-nayar",
-            Material {
-                model: Model::OrenNayar { roughness: 0.5 },
-                ..plastic
-            },
-        ),
-        (
-            "ggx",
-            Material {
-                model: ggx(fresnel),
-                ..plastic
-            },
-        ),
-        (
-            "ggx-gold",
-            Material {
-                kd: 0.0,
-                ks: 1.0,
-                model: ggx(Surface::Metal(Metal::Gold)),
-                ..plastic
-            },
-        ),
-    ]
-}
-
 /// `n` spheres on a grid filling the view, one light.
 fn grid(n: usize) -> Scene<32, 8> {
     let mut scene = Scene::new(camera(14.0), LinearRgb::new(0.1, 0.1, 0.2)).unwrap();
@@ -275,16 +205,10 @@ fn benches(c: &mut Criterion) {
         let id = format!("{}x{}", size.0, size.1);
         bench_paths(c, "size/exponent-series", &series, size, &id, (true, false));
     }
-    for (name, material) in every_model() {
-        bench_paths(
-            c,
-            "model",
-            &covered_in(material),
-            (320, 240),
-            name,
-            (true, false),
-        );
-        bench_fixed(c, "model", &covered_in(material), (320, 240), name);
+    for (name, material) in model_samples() {
+        let scene = covered_sphere(material).unwrap();
+        bench_paths(c, "model", &scene, (320, 240), name, (true, false));
+        bench_fixed(c, "model", &scene, (320, 240), name);
     }
     bench_paths(
         c,

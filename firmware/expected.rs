@@ -46,6 +46,21 @@ pub const MICROFACETS_FIXED_RGB565_CRC32: u32 = 0x0227_dcea;
 /// Pixels of that frame whose primary ray hits a sphere on the fixed path.
 pub const MICROFACETS_FIXED_COVERED: u64 = 38_796;
 
+/// CRC32s (scalar, fixed) of the per-model frames at 320×240 in `Rgb565`:
+/// `shadeline::covered_sphere` of each of `shadeline::model_samples()`, in that order,
+/// rendered by `Prepared::<Scalar, 1, 2>` and by `PreparedFixed::<1, 2>`: the M4F
+/// firmware's `scalar-<model>` and `fixed-<model>` runs (feature `microfacets`; reported,
+/// not budgeted).
+pub const MODEL_RGB565_CRC32: [[u32; 2]; 5] = [
+    [0xa2d2_70f0, 0x0283_5598],
+    [0xf4f0_01a9, 0x326f_f25e],
+    [0x1a73_07b5, 0x4b0d_59b8],
+    [0xb3cc_f6fb, 0x678c_25f4],
+    [0xf42f_798e, 0x810b_fdb9],
+];
+/// Pixels of each per-model frame whose primary ray hits the sphere: all of them.
+pub const MODEL_COVERED: u64 = 76_800;
+
 /// Size of the area-lights frames (`shadeline::area_lights`, whose own size is 640×320):
 /// half of it in each direction, which the M4F's framebuffer holds.
 pub const AREA_LIGHTS_WIDTH: u32 = 320;

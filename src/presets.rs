@@ -6,10 +6,14 @@
 //! Oren–Nayar next to their normalized counterparts (`scenes/microfacets.toml`), and
 //! [`full_moon`] shows why Oren–Nayar exists (`scenes/full-moon.toml`). Those two need the
 //! crate feature `models`: without it they return the scene's refusal of their first such
-//! sphere ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
+//! sphere ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)). [`area_lights`]
+//! shows a sphere light's soft shadows and wider highlights. [`covered_sphere`] of each of
+//! [`model_samples`] is a frame of one reflection model alone, for measuring its cost.
 
 use crate::pixel::LinearRgb;
-use crate::scene::{Camera, Light, Material, Model, Scene, SceneError, Sphere};
+use crate::scene::{
+    Camera, Light, Material, Metal, Microfacet, Model, Scene, SceneError, Specular, Sphere, Surface,
+};
 use crate::vec3::Vec3;
 
 /// The exponent series' image size in the scene file: 1024 × 747.
@@ -411,5 +415,100 @@ fn gallery_stage<const S: usize, const L: usize>(distance: f32) -> Result<Scene<
         color: LinearRgb::new(1.0, 0.85, 0.7),
         intensity: 0.6,
     })?;
+    Ok(scene)
+}
+
+/// One material per reflection model, named as the `model/*` benchmarks and the M4F
+/// firmware's per-model runs name them: a red plastic (`kd` 0.7, `ks` 0.3) as classic Phong
+/// (`n` = 30), normalized Blinn-Phong with a dielectric's Fresnel (`ior` 1.5), Oren–Nayar
+/// (`σ` = 0.5), GGX (roughness 0.5, `ior` 1.5), and GGX gold (roughness 0.5, no diffuse).
+/// With [`covered_sphere`], each is a frame whose every pixel is that model's.
+///
+/// The Oren–Nayar and GGX materials need the crate feature `models` to render: without it
+/// a scene refuses them ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
+pub fn model_samples() -> [(&'static str, Material); 5] {
+    let plastic = Material {
+        albedo: LinearRgb::new(0.7, 0.1, 0.08),
+        kd: 0.7,
+        ks: 0.3,
+        shininess: 30.0,
+        model: Model::Phong,
+    };
+    let fresnel = Surface::Dielectric { ior: Some(1.5) };
+    let ggx = |surface| {
+        Model::Ggx(Microfacet {
+            roughness: 0.5,
+            surface,
+        })
+    };
+    [
+        ("phong", plastic),
+        (
+            "normalized-blinn-phong",
+            Material {
+                model: Model::NormalizedBlinnPhong(Specular {
+                    surface: fresnel,
+                    ..Specular::default()
+                }),
+                ..plastic
+            },
+        ),
+        (
+            "oren-nayar",
+            Material {
+                model: Model::OrenNayar { roughness: 0.5 },
+                ..plastic
+            },
+        ),
+        (
+            "ggx",
+            Material {
+                model: ggx(fresnel),
+                ..plastic
+            },
+        ),
+        (
+            "ggx-gold",
+            Material {
+                kd: 0.0,
+                ks: 1.0,
+                model: ggx(Surface::Metal(Metal::Gold)),
+                ..plastic
+            },
+        ),
+    ]
+}
+
+/// One sphere of `material` that covers every pixel of a frame up to 4:3 (radius 1.5, seen
+/// from 2.2 away with a 40° vertical field of view), lit by two white distant lights from
+/// the upper left and right: the frame that measures a material's cost per pixel, with no
+/// background and no silhouette (the `model/*` benchmarks, the M4F firmware's per-model
+/// runs).
+///
+/// Fails as [`Scene::add_sphere`] fails for `material` (an Oren–Nayar or GGX material
+/// without the feature `models`, a value out of range).
+pub fn covered_sphere(material: Material) -> Result<Scene<1, 2>, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 2.2),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 40.0,
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0))?;
+    scene.add_sphere(Sphere {
+        center: Vec3::new(0.0, 0.0, 0.0),
+        radius: 1.5,
+        material,
+    })?;
+    for direction in [
+        Vec3::new(1.0, -1.0, -1.0),
+        Vec3::new(0.764_842_2, -1.0, -0.355_782_3),
+    ] {
+        scene.add_light(Light::Distant {
+            direction,
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 1.0,
+        })?;
+    }
     Ok(scene)
 }

@@ -144,3 +144,31 @@ fn area_lights_crcs_and_covered_count_match_the_firmware_constants() {
     );
     assert_ne!(sphere, point, "the sphere light changes the frame");
 }
+
+#[test]
+fn per_model_crcs_and_covered_counts_match_the_firmware_constants() {
+    let (w, h) = (expected::WIDTH, expected::HEIGHT);
+    let mut found = Vec::new();
+    for (name, material) in shadeline::model_samples() {
+        let scene = shadeline::covered_sphere(material).expect("built-in scene is valid");
+        let scalar = Prepared::<Scalar, 1, 2>::new(&scene, w, h).unwrap();
+        let fixed = PreparedFixed::<1, 2>::new(&scene, w, h).unwrap();
+        let crcs = [rgb565_crc32(&frame(&scalar)), rgb565_crc32(&frame(&fixed))];
+        let counts = [covered(&scalar), covered(&fixed)];
+        found.push((name, crcs, counts));
+    }
+    let crcs: Vec<[u32; 2]> = found.iter().map(|f| f.1).collect();
+    assert_eq!(
+        crcs,
+        expected::MODEL_RGB565_CRC32,
+        "host per-model CRCs (scalar, fixed) {:#010x?}: update firmware/expected.rs",
+        found
+    );
+    for (name, _, counts) in &found {
+        assert_eq!(
+            *counts,
+            [expected::MODEL_COVERED; 2],
+            "{name}: covered pixels"
+        );
+    }
+}

@@ -9,10 +9,12 @@
 //! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
 //! (`scalar-aa`); with the feature `microfacets`, it also renders the microfacet gallery
 //! (GGX and Oren–Nayar spheres next to normalized Blinn-Phong and Lambert ones) on the
-//! scalar and the fixed path (`scalar-microfacets`, `fixed-microfacets`); with the feature
-//! `area-lights`, it also renders the area-lights preset on the scalar path under its sphere
-//! light and under a point light at the same place (`scalar-sphere-light`,
-//! `scalar-point-light`).
+//! scalar and the fixed path (`scalar-microfacets`, `fixed-microfacets`), and a frame of
+//! each reflection model alone (`shadeline::covered_sphere` of each of
+//! `shadeline::model_samples`: `scalar-phong`, `fixed-phong`, `scalar-nbp` (normalized
+//! Blinn-Phong), … `fixed-ggx-gold`); with the feature `area-lights`, it also renders the
+//! area-lights preset on the scalar path under its sphere light and under a point light at
+//! the same place (`scalar-sphere-light`, `scalar-point-light`).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -66,6 +68,21 @@ impl SquareRoot for Vsqrt {
 /// The scalar path as an M4F firmware builds it: hardware square roots.
 type M4fScalar = ScalarWith<Vsqrt>;
 
+/// The per-model runs of the feature `microfacets`, in the order of
+/// `shadeline::model_samples`: their names (scalar, fixed; `nbp` is normalized Blinn-Phong,
+/// short so that the report line fits its 256 bytes) and expected CRCs.
+#[cfg(feature = "microfacets")]
+const MODEL_RUNS: [([&str; 2], [u32; 2]); 5] = {
+    let crc = common::expected::MODEL_RGB565_CRC32;
+    [
+        (["scalar-phong", "fixed-phong"], crc[0]),
+        (["scalar-nbp", "fixed-nbp"], crc[1]),
+        (["scalar-oren-nayar", "fixed-oren-nayar"], crc[2]),
+        (["scalar-ggx", "fixed-ggx"], crc[3]),
+        (["scalar-ggx-gold", "fixed-ggx-gold"], crc[4]),
+    ]
+};
+
 /// mps2-an386's processor clock, which clocks SysTick: 25 MHz.
 const SYSCLK_HZ: u32 = 25_000_000;
 
@@ -90,6 +107,12 @@ fn main() -> ! {
     static mut MICRO: Option<Prepared<M4fScalar>> = None;
     #[cfg(feature = "microfacets")]
     static mut MICRO_FIXED: PreparedFixed = PreparedFixed::EMPTY;
+    #[cfg(feature = "microfacets")]
+    static mut MODEL_SCENE: Option<Scene<1, 2>> = None;
+    #[cfg(feature = "microfacets")]
+    static mut MODEL: Option<Prepared<M4fScalar, 1, 2>> = None;
+    #[cfg(feature = "microfacets")]
+    static mut MODEL_FIXED: PreparedFixed<1, 2> = PreparedFixed::EMPTY;
     #[cfg(feature = "area-lights")]
     static mut AREA_SCENE: Option<Scene<5, 1>> = None;
     #[cfg(feature = "area-lights")]
@@ -170,6 +193,42 @@ fn main() -> ! {
             (None, _) => {
                 session.note("shadeline-fw error=prepare-fixed-microfacets\n");
                 session.fail();
+            }
+        }
+        // One frame per reflection model, every pixel that model's.
+        let models = shadeline::model_samples().into_iter().zip(MODEL_RUNS);
+        for ((_, material), ([scalar_name, fixed_name], [scalar_crc, fixed_crc])) in models {
+            let slot = &mut *MODEL_SCENE;
+            let (Some(scene), _) = session.build(slot, || shadeline::covered_sphere(material))
+            else {
+                session.note("shadeline-fw error=scene-model\n");
+                exit(false)
+            };
+            let expected = |crc| Expected {
+                crc,
+                covered: common::expected::MODEL_COVERED,
+            };
+            session.build_and_run(
+                scalar_name,
+                &mut *MODEL,
+                || Prepared::<M4fScalar, 1, 2>::new(scene, WIDTH, HEIGHT),
+                Sink::Frame(&mut FRAME[..]),
+                expected(scalar_crc),
+            );
+            match session.build_in(&mut *MODEL_FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
+                (Some(path), prepare) => session.run(
+                    fixed_name,
+                    path,
+                    Sink::Frame(&mut FRAME[..]),
+                    prepare,
+                    expected(fixed_crc),
+                ),
+                (None, _) => {
+                    session.note("shadeline-fw error=prepare-");
+                    session.note(fixed_name);
+                    session.note("\n");
+                    session.fail();
+                }
             }
         }
     }
