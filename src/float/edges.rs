@@ -144,8 +144,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let Some(first) = self.edges(row, u, d, (centre.sphere, t), none, candidates) else {
             return centre;
         };
-        let (second, second_t) =
-            self.shade_along(first.direction, candidates, Some(first.filter), false, true);
+        let (second, second_t) = self.shade_filtered(&(first.direction, first.filter), candidates);
         // What lies behind the first edge: the second shading where the centre ray hits the
         // edge's sphere (it left that sphere out), the centre ray elsewhere.
         let inside = first.inside;
@@ -158,14 +157,37 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             Some(mut edge) => {
                 edge.filter.also = sphere;
                 edge.coverage = first.coverage_left(&edge);
-                let (third, _) =
-                    self.shade_along(edge.direction, candidates, Some(edge.filter), false, true);
+                let (third, _) = self.shade_filtered(&(edge.direction, edge.filter), candidates);
                 edge.blend(behind, third.color)
             }
             None => behind,
         };
         centre.color = Vec3::select(first.lanes, first.mix(front, behind), centre.color);
         centre
+    }
+
+    /// The second and third shadings of an edge: [`Self::shade_along`] along the edge's
+    /// directions with its filter, no hit record, saturated.
+    ///
+    /// Out of line, with one copy per path and capacity: inlined, each of its two calls
+    /// would put a copy of the whole kernel into every copy of the kernel (one per pixel
+    /// format a program renders). That makes `tests/paths_agree.rs`, which renders every
+    /// path into four formats, a 202 s compile (rustc `-Z time-passes`, one core); out of
+    /// line, 51 s. A firmware would pay for each copy in flash.
+    ///
+    /// Cold, because most packets have no edge: the code around the call keeps its
+    /// registers (the anti-aliased firmware frame on a Cortex-M4F, QEMU count: with
+    /// anti-aliasing off 0.2% fewer instructions than inlined, with it on 3.2% more). The
+    /// arguments come as a reference to a copy: an address passed to a call keeps the value
+    /// in memory on every path.
+    #[cold]
+    #[inline(never)]
+    fn shade_filtered(
+        &self,
+        &(d, filter): &(Vec3<W::Lane>, Filter<W::Lane>),
+        candidates: &[u16],
+    ) -> (Packet<W::Lane>, W::Lane) {
+        self.shade_along(d, candidates, Some(filter), false, true)
     }
 
     /// `edges`: for the packet whose centre rays are `u` (unit: `d`), behind which the

@@ -36,7 +36,9 @@
 //! no lane shows a normalized material does the classic models' arithmetic alone.
 //!
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
-//! compiler sees the packet loop as one function.
+//! compiler sees the packet loop as one function. The one exception is the second and third
+//! shadings of anti-aliased edges (`shade_filtered` in [`super::edges`]): out of line and
+//! cold, so that the kernel holds one copy of itself, not three.
 
 #[cfg(feature = "area-lights")]
 use super::area;
