@@ -8,13 +8,10 @@
 //!   display bytes, and as a segment;
 //! - `shadeline_eg_draw`: the embedded-graphics `Drawable` into a `DrawTarget`.
 //!
-//! With the `probe` feature, `shadeline_alloc_probe` allocates through a global allocator:
-//! the check must find the allocator symbols in that build, or it is broken.
+//! Its sibling binary, `alloc_probe` (`src/bin/alloc_probe.rs`), allocates on purpose: the
+//! check must find the allocator symbols there, or it is broken.
 #![no_std]
 #![no_main]
-
-#[cfg(feature = "probe")]
-extern crate alloc;
 
 use core::panic::PanicInfo;
 use embedded_graphics_core::pixelcolor;
@@ -156,30 +153,6 @@ pub fn shadeline_eg_draw(
     let _ = Drawing::new(simd).draw(&mut display);
     let _ = Drawing::new(fixed).draw(&mut display);
 }
-
-/// Allocates on purpose: the check must find the allocator in this build.
-#[cfg(feature = "probe")]
-#[no_mangle]
-pub fn shadeline_alloc_probe(n: u32) -> u32 {
-    let v = alloc::vec![n; n as usize];
-    core::hint::black_box(&v).iter().sum()
-}
-
-/// A global allocator that never gives memory (the probe only needs to link).
-#[cfg(feature = "probe")]
-struct NoMemory;
-
-#[cfg(feature = "probe")]
-unsafe impl core::alloc::GlobalAlloc for NoMemory {
-    unsafe fn alloc(&self, _: core::alloc::Layout) -> *mut u8 {
-        core::ptr::null_mut()
-    }
-    unsafe fn dealloc(&self, _: *mut u8, _: core::alloc::Layout) {}
-}
-
-#[cfg(feature = "probe")]
-#[global_allocator]
-static ALLOCATOR: NoMemory = NoMemory;
 
 #[panic_handler]
 fn panic(_: &PanicInfo) -> ! {
