@@ -187,7 +187,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         &(d, filter): &(Vec3<W::Lane>, Filter<W::Lane>),
         candidates: &[u16],
     ) -> (Packet<W::Lane>, W::Lane) {
-        self.shade_along(d, candidates, Some(filter), false, true)
+        self.shade_along::<true>(d, candidates, Some(filter), false, true)
     }
 
     /// `edges`: for the packet whose centre rays are `u` (unit: `d`), behind which the

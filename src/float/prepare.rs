@@ -209,6 +209,9 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// branch only in frames that need it.
     #[cfg(feature = "area-lights")]
     pub(crate) sphere_lights: bool,
+    /// Whether a sphere has a normalized model (or Lambert): frames without one are shaded
+    /// by a kernel that holds only the classic models' code (see `float::row`).
+    pub(crate) normalized: bool,
     _path: PhantomData<W>,
 }
 
@@ -317,6 +320,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let sphere_lights = lights
             .iter()
             .any(|l| matches!(l, PreparedLight::Sphere { .. }));
+        let normalized = spheres.iter().any(|s| s.normalized);
         Ok(Prepared {
             width,
             height,
@@ -340,6 +344,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             pixel,
             #[cfg(feature = "area-lights")]
             sphere_lights,
+            normalized,
             _path: PhantomData,
         })
     }

@@ -6,14 +6,16 @@
 //! to the kernel ([`Prepared::shade`]) with only the spheres whose spans touch the packet. The
 //! last packet of a run computes full lanes and stores only the pixels that belong to the
 //! run: no per-lane branch in the math, no read or write outside the caller's slice. Then
-//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format.
+//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format. Rows of
+//! a frame without a normalized material go to the kernel without the normalized models'
+//! code (see [`super::kernel`]).
 //!
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
 
 use super::kernel::Packet;
 use super::lane::Lane;
-use super::prepare::{FloatPath, Prepared};
+use super::prepare::{FloatPath, Prepared, Row};
 use crate::encoding::{linear_code, luma, Encoding};
 use crate::pixel::{pixel_from_codes, HitRecord, LinearRgb, Pixel, Shade};
 use crate::render::{check_segment, Render, RenderError};
@@ -60,24 +62,54 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         let spans = self.row_spans(y);
         let runs = merge_runs::<S>(&spans);
         let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
-        walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
+        let run = (x as usize, y, encoding, &background);
+        // Two kernels: frames without a normalized material get one that holds only the
+        // classic models' code (see the kernel's module docs).
+        if self.normalized {
+            self.shade_runs::<P, true>(out, run, &row, &spans, &runs);
+        } else {
+            self.shade_runs::<P, false>(out, run, &row, &spans, &runs);
+        }
+        Ok(())
+    }
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    /// Shades the covered `runs` of `out` (pixels `x…` of row `y`), packet by packet, and
+    /// fills the rest with the background: the body of `render_segment_with`. `NORMALIZED`:
+    /// see [`Prepared::shade`].
+    #[inline(always)]
+    fn shade_runs<P: Pixel, const NORMALIZED: bool>(
+        &self,
+        out: &mut [P],
+        (x, y, encoding, background): (usize, u32, Encoding, &Background<P>),
+        row: &Row,
+        spans: &[Option<Span>],
+        runs: &[Span],
+    ) {
+        walk_runs(out, x, runs, background, |start, run_pixels| {
             let mut candidates = Candidates::<S>::new();
             // The lane count as a constant inside the closure, so that `chunks_mut`'s check
             // for a zero size folds away even where the closure is not inlined.
             for (chunk_index, chunk) in run_pixels.chunks_mut(W::Lane::LANES).enumerate() {
                 let x0 = (start + chunk_index * W::Lane::LANES) as u32;
                 let x1 = x0 + chunk.len() as u32;
-                let candidates = candidates.overlapping(&spans, x0, x1);
+                let candidates = candidates.overlapping(spans, x0, x1);
                 if candidates.is_empty() {
                     background.fill(chunk, x0 as usize);
                     continue;
                 }
                 // Formats with levels clamp each channel to [0, 1]: `+∞` stores what `f32::MAX` does.
-                let packet = self.shade(&row, x0, candidates, P::NEEDS_HITS, P::LEVELS.is_none());
+                let packet = self.shade::<NORMALIZED>(
+                    row,
+                    x0,
+                    candidates,
+                    P::NEEDS_HITS,
+                    P::LEVELS.is_none(),
+                );
                 store_packet(chunk, &packet, encoding, x0, y);
             }
         });
-        Ok(())
     }
 }
 
