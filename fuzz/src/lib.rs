@@ -613,6 +613,11 @@ pub struct Row {
     pub rgb565: Vec<Rgb565>,
     /// The encoding of the fields below.
     pub encoding: Encoding,
+    /// Linear colour, rendered with the encoding: what the encoded fields below quantize.
+    /// The float paths give `linear`'s bits; the fixed path, under a transfer other than
+    /// linear, shades its dark silhouette pixels with the full-width kernel (finer dark
+    /// levels), which may differ from `linear` there.
+    pub enc_linear: Vec<LinearRgb>,
     /// 8-bit colour, encoded.
     pub enc_rgb888: Vec<Rgb888>,
     /// 5-6-5 colour, encoded.
@@ -659,6 +664,7 @@ pub fn render_row<R: Render + Clone>(r: &R, y: u32, encoding: Encoding) -> Row {
         rgb888: line(r, y),
         rgb565: line(r, y),
         encoding,
+        enc_linear: line(&e, y),
         enc_rgb888: line(&e, y),
         enc_rgb565: line(&e, y),
         enc_bgr565: line(&e, y),
@@ -702,13 +708,30 @@ fn rule<P: Pixel>(color: LinearRgb, e: Encoding, float: bool, x: u32, y: u32) ->
     P::from_levels(encode_levels(codes, levels, P::GRAY, e, x, y))
 }
 
-/// Asserts that the encoded pixels of `row` are the encoding rule applied to its linear
-/// colour, and its byte rows the encoded pixels' bytes.
+/// Largest difference, per channel, between the fixed path's linear colour with and without
+/// a non-linear transfer: its narrow and full-width kernels each stay within about one 8-bit
+/// level of the `f64` reference where they are used, so within two of each other.
+const FIXED_PRECISE_DARKS: f32 = 2.0 / 255.0;
+
+/// Asserts that the encoded pixels of `row` are the encoding rule applied to the linear
+/// colour rendered with the encoding, that this is the unencoded linear colour (the float
+/// paths: bit for bit; the fixed path: within [`FIXED_PRECISE_DARKS`]), and that its byte
+/// rows are the encoded pixels' bytes.
 fn check_encoded(row: &Row, y: u32, what: &str, float: bool) {
     let e = row.encoding;
-    for (x, c) in row.linear.iter().enumerate() {
+    for (x, (c, plain)) in row.enc_linear.iter().zip(&row.linear).enumerate() {
         let (xi, c) = (x as u32, *c);
         let at = |f: &str| format!("{what}: pixel {x}, {f} {e:?}");
+        let channels = [(c.r, plain.r), (c.g, plain.g), (c.b, plain.b)];
+        if float {
+            let same = channels.iter().all(|(a, b)| a.to_bits() == b.to_bits());
+            assert!(same, "{}: {c:?} vs {plain:?}", at("linear with the encoding"));
+        } else {
+            let near = channels
+                .iter()
+                .all(|(a, b)| (a - b).abs() <= FIXED_PRECISE_DARKS);
+            assert!(near, "{}: {c:?} vs {plain:?}", at("linear with the encoding"));
+        }
         assert_eq!(
             row.enc_rgb888[x],
             rule::<Rgb888>(c, e, float, xi, y),
