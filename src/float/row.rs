@@ -63,9 +63,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         let runs = merge_runs::<S>(&spans);
         let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
         let run = (x as usize, y, encoding, &background);
-        // Two kernels: frames without a normalized material get one that holds only the
-        // classic models' code (see the kernel's module docs).
-        if self.normalized {
+        // Two kernels on the scalar paths: frames without a normalized material get one that
+        // holds only the classic models' code (see the kernel's module docs). The SIMD paths
+        // keep one kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
+        if W::Lane::LANES > 1 || self.normalized {
             self.shade_runs::<P, true>(out, run, &row, &spans, &runs);
         } else {
             self.shade_runs::<P, false>(out, run, &row, &spans, &runs);
