@@ -209,8 +209,9 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// branch only in frames that need it.
     #[cfg(feature = "area-lights")]
     pub(crate) sphere_lights: bool,
-    /// Whether a sphere has a normalized model (or Lambert): frames without one are shaded
-    /// by a kernel that holds only the classic models' code (see `float::row`).
+    /// Whether a sphere has a normalized model (or Lambert): on the scalar paths, frames
+    /// without one are shaded by a kernel that holds only the classic models' code (see
+    /// `float::row`).
     pub(crate) normalized: bool,
     _path: PhantomData<W>,
 }

@@ -6,9 +6,9 @@
 //! to the kernel ([`Prepared::shade`]) with only the spheres whose spans touch the packet. The
 //! last packet of a run computes full lanes and stores only the pixels that belong to the
 //! run: no per-lane branch in the math, no read or write outside the caller's slice. Then
-//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format. Rows of
-//! a frame without a normalized material go to the kernel without the normalized models'
-//! code (see [`super::kernel`]).
+//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format. On the
+//! scalar paths, rows of a frame without a normalized material go to the kernel without the
+//! normalized models' code (see [`super::kernel`]).
 //!
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
