@@ -153,8 +153,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// The stages from `hit` on, along the unit directions `d`; also returns the hit
     /// distance per lane (`f32::MAX` on a miss). `filter`, for the second shading of
     /// anti-aliased edges, limits each lane to some spheres (see [`Filter`]). `saturate`: see
-    /// [`combine`].
-    /// `NORMALIZED`: see [`Self::shade`].
+    /// [`combine`]. `NORMALIZED`: see [`Self::shade`]; the edges' shadings always pass
+    /// `true`, as they run rarely and serve every frame.
     #[inline(always)]
     pub(crate) fn shade_along<const NORMALIZED: bool>(
         &self,
