@@ -75,10 +75,8 @@ pub enum Transfer {
 ///
 /// Applies to formats that store levels ([`Rgb888`](crate::Rgb888), [`Rgb565`](crate::Rgb565),
 /// [`Bgr565`](crate::Bgr565), [`Gray8`](crate::Gray8)); [`LinearRgb`](crate::LinearRgb) and
-/// [`HitRecord`](crate::HitRecord) store no levels. On the fixed path the transfer also sets
-/// which dark pixels at the silhouettes the narrow kernel computes at full width (under sRGB,
-/// whose dark levels are finer), for every format: the codes a level format encodes are the
-/// path's [`LinearRgb`](crate::LinearRgb) output under the same encoding.
+/// [`HitRecord`](crate::HitRecord) store no levels. The codes a level format encodes are the
+/// path's [`LinearRgb`](crate::LinearRgb) output, whatever the encoding.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, Default)]
 pub struct Encoding {
     /// The transfer function.

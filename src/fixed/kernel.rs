@@ -129,7 +129,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The hit point `P = eye + t·d` and the unit normal `N = (P − C)·(1/r)`.
     #[inline(always)]
-    fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
+    pub(super) fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
         let step = d.map(|c| len_times_unit(t, c));
         let p = each3(|i| to_len(self.eye[i].to_bits() as i64 + step[i]));
         let (y, shift) = s.inv_radius;
@@ -385,7 +385,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
 /// The half vector `H = normalize(L + V)`, `V = −d`; `None` where `L = −V`.
 #[inline(always)]
-fn half_vector(l: V3<Unit>, d: V3<Unit>) -> Option<V3<Unit>> {
+pub(super) fn half_vector(l: V3<Unit>, d: V3<Unit>) -> Option<V3<Unit>> {
     normalize(each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64))
 }
 
@@ -394,7 +394,7 @@ fn half_vector(l: V3<Unit>, d: V3<Unit>) -> Option<V3<Unit>> {
 /// `1 − cos = ½|u|²`, and `|u|²` of 30-bit fractions in F60 is `½|u|²` in F61, exact from
 /// the components, with full relative precision at the highlight.
 #[inline(always)]
-fn lobe_h(
+pub(super) fn lobe_h(
     blinn: bool,
     n: V3<Unit>,
     l: V3<Unit>,

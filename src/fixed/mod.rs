@@ -87,13 +87,14 @@
 //! # Costs
 //!
 //! Frames whose lights are all distant and whose spheres use the classic models (the
-//! conditions are in its module, `narrow`) are shaded by the narrow kernel: 16×16→32-bit products,
-//! `oc × D` and `oc·D` advanced by one addition per pixel, about a dozen `MULS` for the
-//! normal, two table-and-Newton inverse square roots, and the full-width kernel below only
-//! for the pixels whose lobe needs its precision (the bright part of a narrow highlight). On
-//! the exponent series at 320×240 (`.ci/firmware`) a frame takes 9.7 M instructions on the
-//! Cortex-M0, 6.7 M on the Cortex-M4F and 7.0 M on the RV32IMAC, with the same bits on all
-//! three; 1.16 sphere-pixels are tested per covered pixel (`spans`).
+//! conditions are in its module, `narrow`) are shaded by the narrow kernel: no vectors per
+//! pixel, but the ray's discriminant and each light's `N·L` numerator as exact quadrics in
+//! the column, forward-differenced (two 64-bit additions each), 16×16→32-bit products, two
+//! table lookups with linear interpolation for `1/|D|` and `N·V`, and 64-bit arithmetic only
+//! for the bright part of a narrow highlight (`precise_lobe`). On the exponent series at
+//! 320×240 (`.ci/firmware`) a frame takes 7.4 M instructions on the Cortex-M0, 5.8 M on the
+//! Cortex-M4F and 6.1 M on the RV32IMAC, with the same bits on all three; 1.16 sphere-pixels
+//! are tested per covered pixel (`spans`).
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
 //! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against

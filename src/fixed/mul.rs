@@ -107,6 +107,16 @@ pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
     }
 }
 
+/// `a·b` for an `i64` and an `i32`, wrapping: the exact product wherever it fits `i64`
+/// (where its callers use it, their bounds say it does). `a = aₕ·2³² + aₗ` with `aₗ`
+/// unsigned: `aₕ·b` wraps into the high word, and `aₗ·b` is one exact 32×32→64 product, so
+/// on ARMv6-M it is five `MULS` inline instead of a call to `__aeabi_lmul`.
+#[inline(always)]
+pub(crate) fn mul_wide(a: i64, b: i32) -> i64 {
+    let high = ((a >> 32) as i32).wrapping_mul(b);
+    ((high as i64) << 32).wrapping_add(mul_iu(b, a as u32))
+}
+
 /// `a·b` from four 16×16→32 products: `a = aₕ·2¹⁶ + aₗ`, likewise `b`.
 #[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
 #[inline(always)]

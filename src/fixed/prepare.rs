@@ -12,7 +12,7 @@
 //! rectangle ([`super::spans`]).
 
 use super::exact::Exact;
-use super::mul::mul_ii;
+use super::mul::{mul_ii, mul_uu, mul_wide};
 use super::roots::inv_sqrt;
 use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
@@ -38,18 +38,11 @@ pub const MAX_PLANE_SCALE: f32 = 127.0;
 /// they are U16F16 and two of them multiply and add without wrapping.
 pub const MAX_LEVEL: f32 = 32_767.0;
 
-/// The narrow kernel's error bound (module `narrow`): the largest error of a component of
-/// `R − V` (or `N − H`) where `N·V ≥ 0.3`, `2⁻¹⁰`. Checked by the narrow module's
-/// `narrow_vectors_within_delta` (the largest seen is 26 steps of `2⁻¹⁵`).
-pub(crate) const DELTA: f32 = 1.0 / 1024.0;
-
-/// The same bound near the reflection, where `h = ½|R − V|² < 1/8` (`N·V ≥ 0.3`):
-/// `20·2⁻¹⁵` (the largest seen is 17.9 steps, checked by `narrow_vectors_within_delta`).
-/// The lobe's error bound, which decides whether a sphere's highlight needs the full-width
-/// kernel, uses it for `n ≥ 32`: the lobe's slope `n·√(2h)·e^(−nh)`, which turns an error
-/// of `R − V` into an error of the lobe, peaks at `h = 1/(2n)` and is below a tenth of its
-/// peak from `h = 4/n ≤ 1/8` on, where [`DELTA`] bounds the error.
-pub(crate) const DELTA_LOBE: f32 = 20.0 / 32768.0;
+/// The largest error of the narrow kernel's fast `h = 1 − cos` (Phong's `1 − R·V`,
+/// Blinn-Phong's `1 − N·H` where `|L + V| ≥ ¾`), `6·2⁻¹⁵`: checked by the narrow module's
+/// `fast_h_within_its_bound` on the exponent series and on random frames. The prepare's lobe
+/// cutoff and the test of whether a sphere's lobe needs the precise `h` use it.
+pub(crate) const H_ERROR: f32 = 6.0 / 32768.0;
 
 /// The primary directions of a frame in narrow form: `D = forward + dy·step_y + dx·step_x`
 /// with `dx = 2x + 1 − w` and `dy = h − 2y − 1`, integer vectors with `|D| < 2³⁰`.
@@ -60,54 +53,278 @@ pub(crate) struct NarrowView {
     pub step_y: V3<i32>,
 }
 
+/// A quadratic in a pixel's offsets from a sphere's origin column and row, in half pixels:
+/// `q = c₀₀ + c₁₀·x + c₀₁·y + c₂₀·x² + c₁₁·x·y + c₀₂·y²` with `x = dx − X₀`, `y = dy − Y₀`
+/// (see [`NarrowSphere::origin`]), integer coefficients. Evaluated exactly: along a row it is
+/// a quadratic in the column, which the narrow kernel forward-differences with two additions
+/// per pixel.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub(crate) struct Quadric {
+    /// `[c₀₀, c₁₀, c₀₁, c₂₀, c₁₁, c₀₂]`.
+    pub c: [i64; 6],
+}
+
+/// A quadric's state along a row at one column: its value, its step to the next column,
+/// and the step's own step, so that `v += d; d += dd` moves it one pixel right.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Step {
+    pub v: i64,
+    pub d: i64,
+    pub dd: i64,
+}
+
+impl Quadric {
+    /// The quadric along the row `y` (offset from the origin row): `(e₀, e₁, e₂)` with
+    /// `q = e₀ + e₁·x + e₂·x²`. Wrapping arithmetic: every partial sum is a value (or half a
+    /// difference) of the quadric inside the frame, which its scale keeps within `2⁶²`.
+    #[inline(always)]
+    pub(crate) fn row(&self, y: i32) -> [i64; 3] {
+        let [c00, c10, c01, c20, c11, c02] = self.c;
+        let e0 = c00.wrapping_add(mul_wide(c01.wrapping_add(mul_wide(c02, y)), y));
+        let e1 = c10.wrapping_add(mul_wide(c11, y));
+        [e0, e1, c20]
+    }
+
+    /// The state at column offset `x` of a row's `(e₀, e₁, e₂)`, stepping by two half pixels
+    /// (one pixel) per column.
+    #[inline(always)]
+    pub(crate) fn step_at([e0, e1, e2]: [i64; 3], x: i32) -> Step {
+        Step {
+            v: e0.wrapping_add(mul_wide(e1.wrapping_add(mul_wide(e2, x)), x)),
+            // q(x + 2) − q(x) = 2·e₁ + e₂·(4x + 4).
+            d: e1
+                .wrapping_mul(2)
+                .wrapping_add(mul_wide(e2, x.wrapping_mul(4).wrapping_add(4))),
+            dd: e2.wrapping_mul(8),
+        }
+    }
+}
+
+/// `a·b` of two `i64`, exact: four 32×32→64 products ([`mul_uu`], inline `MULS` on
+/// ARMv6-M), not a call to the 128×128 multiplication routine.
+fn mul_128(a: i64, b: i64) -> i128 {
+    let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
+    if (a < 0) != (b < 0) {
+        -p
+    } else {
+        p
+    }
+}
+
+/// `a·b` of two integer vectors whose products fit `i64` each, exact.
+#[inline(never)]
+fn dot_128(a: V3<i64>, b: V3<i64>) -> i128 {
+    mul_128(a[0], b[0]) + mul_128(a[1], b[1]) + mul_128(a[2], b[2])
+}
+
+/// `a × b` of two vectors of `i32` values, exact.
+#[inline(never)]
+fn cross_64(a: V3<i64>, b: V3<i64>) -> V3<i64> {
+    let m = |x: i64, y: i64| mul_ii(x as i32, y as i32);
+    [
+        m(a[1], b[2]) - m(a[2], b[1]),
+        m(a[2], b[0]) - m(a[0], b[2]),
+        m(a[0], b[1]) - m(a[1], b[0]),
+    ]
+}
+
+/// The `h` (Q31) from which a lobe of exponent `n` times `ks_intensity` (`ks` times the sum
+/// of the lights' brightest channels) is below `τ`, half a U16F16 step, allowing for the
+/// fast `h`'s error ([`H_ERROR`]). Out of line: `powf` works in `f64` with a large stack
+/// frame, which would otherwise be part of every caller's.
+#[inline(never)]
+fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
+    let tau = 1.0 / 131_072.0;
+    if ks_intensity <= tau {
+        return 0;
+    }
+    let h = 1.0 - libm::powf(tau / ks_intensity, 1.0 / n);
+    // Saturates at 2: above 1 the lobe is 0 anyway.
+    ((h + 2.0 * H_ERROR) * (1u64 << 31) as f32) as u32
+}
+
+/// The quadric `E′` over `den`, from `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|²` (see [`Quadric`])
+/// with `D = dc + x·sx + y·sy` (`dirs`), `r²` and `w`, the cross products of `oc` with the
+/// three directions: each raw coefficient is a product of the directions' Gram matrix and
+/// of `w`, exact in `i128`, divided as soon as it is made (one `i128` at a time on the
+/// stack).
+#[inline(never)]
+fn e_quadric(r2: i64, w: &[V3<i64>; 3], dirs: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
+    let term = |a: usize, b: usize, twice: bool| {
+        let (u, v) = (dirs[a % 3], dirs[b % 3]);
+        let dot = each3(|k| mul_ii(u[k] as i32, v[k] as i32));
+        let c = mul_128(r2, dot[0] + dot[1] + dot[2]) - dot_128(w[a % 3], w[b % 3]);
+        den.divide(if twice { 2 * c } else { c })
+    };
+    Some(Quadric {
+        c: [
+            term(0, 0, false)?,
+            term(0, 1, true)?,
+            term(0, 2, true)?,
+            term(1, 1, false)?,
+            term(1, 2, true)?,
+            term(2, 2, false)?,
+        ],
+    })
+}
+
+/// The quadric `G` over `den`, from `G·r·2⁸⁸ = (oc × D)·(L × D)` (see [`Quadric`]) with `w`
+/// and `v` the cross products of `oc` and of `L` with the three directions of
+/// [`e_quadric`], exact in `i128` and divided one at a time.
+#[inline(never)]
+fn g_quadric(w: &[V3<i64>; 3], v: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
+    let term = |a: usize, b: usize| {
+        let c = if a == b {
+            dot_128(w[a % 3], v[a % 3])
+        } else {
+            dot_128(w[a % 3], v[b % 3]) + dot_128(w[b % 3], v[a % 3])
+        };
+        den.divide(c)
+    };
+    Some(Quadric {
+        c: [
+            term(0, 0)?,
+            term(0, 1)?,
+            term(0, 2)?,
+            term(1, 1)?,
+            term(1, 2)?,
+            term(2, 2)?,
+        ],
+    })
+}
+
+/// A positive divisor `m·2^z` held as `⌊(2¹²⁷ − 1)/m⌋` with `m` in `[2⁶³, 2⁶⁴)`, so that a
+/// division by it is one 64×64→128 product and a shift: the prepare divides a dozen
+/// coefficients per sphere by the same two numbers, and a 128-bit division is a long
+/// routine on a 32-bit core.
+struct Divisor {
+    recip: u64,
+    z: i32,
+}
+
+impl Divisor {
+    /// `m·2^z` for a divisor of at most 64 significant bits; `None` for 0. The reciprocal
+    /// comes from a 32-bit estimate and one Newton step `R + R·(2¹²⁷ − m·R)/2¹²⁷`
+    /// (within `2⁻⁶⁰`), not from a 128-bit division.
+    fn new(m: u64, z: i32) -> Option<Self> {
+        if m == 0 {
+            return None;
+        }
+        let lz = m.leading_zeros();
+        let m = m << lz;
+        // 2⁶³/(m_high + 1) underestimates 2⁹⁵/m by less than 2⁻³⁰ relative.
+        let high = (m >> 32) + 1; // in (2³¹, 2³²]
+        let r0 = ((1u64 << 63) / high) << 32;
+        // m·r0 ≤ 2¹²⁷, and the remainder is below 2¹²⁷·2⁻³⁰.
+        let rest = ((1u128 << 127) - mul_u128(m, r0)) >> 34;
+        let recip = r0.saturating_add((mul_u128(r0, rest as u64) >> 93) as u64);
+        Some(Divisor {
+            recip,
+            z: z - lz as i32,
+        })
+    }
+
+    /// `c` over the divisor, within two units (the dividend is taken to its top 63 bits and
+    /// the reciprocal has 64); `None` if it does not fit `i64`.
+    #[inline(never)]
+    fn divide(&self, c: i128) -> Option<i64> {
+        let t = (128 - c.unsigned_abs().leading_zeros()).saturating_sub(63);
+        let p = mul_128_u(i64::try_from(c >> t).ok()?, self.recip);
+        // c/(m·2^z) = (c >> t)·2^t·recip·2⁻¹²⁷·2^-z.
+        let s = t as i32 - 127 - self.z;
+        let q = if s >= 0 {
+            let q = p.checked_shl(s as u32)?;
+            (q >> s == p).then_some(q)?
+        } else {
+            p >> (-s).min(127)
+        };
+        i64::try_from(q).ok()
+    }
+}
+
+/// `a·b` of two `u64`, exact, from four 32×32→64 products. This and the other helpers of
+/// the quadrics' coefficients are out of line: they run a few dozen times per frame, and
+/// inlined they would repeat their products in the firmware's flash.
+#[inline(never)]
+fn mul_u128(a: u64, b: u64) -> u128 {
+    let (xh, xl, yh, yl) = ((a >> 32) as u32, a as u32, (b >> 32) as u32, b as u32);
+    ((mul_uu(xh, yh) as u128) << 64)
+        + (((mul_uu(xh, yl) as u128) + (mul_uu(xl, yh) as u128)) << 32)
+        + mul_uu(xl, yl) as u128
+}
+
+/// `a·b` of an `i64` and a `u64`, exact.
+fn mul_128_u(a: i64, b: u64) -> i128 {
+    let p = mul_u128(a.unsigned_abs(), b) as i128;
+    if a < 0 {
+        -p
+    } else {
+        p
+    }
+}
+
 /// A sphere's narrow constants, the per-pixel ones first (see [`FixedSphere`]).
+///
+/// Its two quadrics (`e` here, `g` per light in [`NarrowLight`]) hold, for the direction `d`
+/// of a pixel (`D/2²⁹`, length in `[1, √2]`) and `ô = (eye − centre)/r`:
+///
+/// - `E′ = |d|² − |ô × d|²`, the ray's discriminant times `|d|²/r²`: the ray hits iff
+///   `E′ ≥ 0`, and then `N·V = √(E′/|d|²)`;
+/// - `G = (ô × d)·(L × d)`, from which `N·L = (G − √E′·(d·L))/|d|²`.
+///
+/// `e` is held times `2^(29 + e_shift)` and `g` times `2^(29 + g_shift)`, the largest powers
+/// that keep every value in the frame 16 times below `2⁶³` (`|E′| ≤ 2·max(1, |ô|²)`,
+/// `|G| ≤ 2|ô|`), so a value shifted right by its shift is `E′` or `G` in Q29.
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(crate) struct NarrowSphere {
-    /// Whether the narrow lobe is within a quarter level wherever it is not 0.
+    /// Whether the fast lobe is within half a level wherever it is not 0.
     pub lobe_everywhere: bool,
     /// `1 − r²/(r + ε)²` in Q30: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
     pub shadow_limit: u32,
     /// `h` (Q31) from which the lobe is 0.
     pub cutoff: u32,
-    /// The high word of the held `w`, shifted right by this, is `w16` (`|w16| < 2¹⁶` on a hit).
-    pub right: u32,
-    /// `2^(L + 15)/r` with `L` the bit length of the raw radius: in `(2¹⁵, 2¹⁶]`.
+    /// See the type's docs.
+    pub e_shift: u32,
+    pub g_shift: u32,
+    /// `N` from `oc × D` (on demand, for caster tests): that product's bits from this one
+    /// on, `(oc × D) >> cross_shift`, are below `2¹⁶` on a hit; with `gain = 2^(L + 15)/r`
+    /// (`L` the raw radius's bit length, `cross_shift = L + 14`).
+    pub cross_shift: u32,
     pub gain: u32,
     /// The radius, raw I16F16.
     pub radius: u32,
-    /// The first caster the 32-bit filter covers, if any.
-    pub fast: Option<FastCaster>,
-    /// `w` is held shifted left by this (0 or 1), so its high word is `w >> (32 − left)`.
-    pub left: u32,
-    /// `w` per pixel step: `oc × 2·step_x`, held shifted like `w`.
-    pub dw: V3<i64>,
     /// Whether `b = oc·D` grows along a row (`oc·step_x > 0`).
     pub b_rises: bool,
+    /// The quadrics' origin `(X₀, Y₀)`: the half-pixel offsets `dx`, `dy` of a pixel at the
+    /// middle of the sphere's screen rectangle.
+    pub origin: (i32, i32),
+    /// `E′`, see above.
+    pub e: Quadric,
 }
 
-/// A caster of a sphere, for the 32-bit filter in front of the narrow kernel's exact caster
-/// test (`narrow_blocked`). Lengths are in units of the sphere's radius `r`, Q11.
+/// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
+/// front of the caster tests.
 ///
-/// The shadow ray leaves `O = C + (r + ε)·N`. With `ĉ = (C_k − C)/r`, `d = N − ĉ` and
-/// `t = N·L − ĉ·L`, the ray moves toward the caster only if `t < 0`, and passes within
-/// `√(|d|² − t²)` of its centre (up to the lift's `ε/r`). The filter skips the exact test
-/// where `t` is clearly not negative or that distance clearly exceeds the caster's radius:
-/// the margins cover the rounding of `N`, `ĉ`, `ĉ·L` and `N·L` to Q11 and the lift's `ε/r`,
-/// so it only skips tests that the exact one fails too, and a frame keeps its bits.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct FastCaster {
-    /// The caster's index and the light's.
-    pub sphere: u8,
-    pub light: u8,
-    /// `ĉ`, `|ĉ| ≤ 8`.
-    pub c: [i16; 3],
-    /// `ĉ·L`.
-    pub g: i16,
-    /// `N·L` (Q11) at or above this: `t ≥ 0`, the caster is behind the ray.
-    pub ahead: i16,
-    /// Q22: `|d|² − t²` above this, the ray passes outside the caster.
-    pub reach2: i32,
+/// The filter holds for the lifted origin `O = C + (r + ε)·N` of any caster `k` of the
+/// sphere: the shadow ray can meet the caster only if `O` is behind it along `L`
+/// (`N·L < −(C − C_k)·L/(r + ε)`) and if `O` can come within `r_k` of the caster's axis,
+/// `C_k + s·L`: at a given `N·L`, `N`'s part across `L` has length `√(1 − (N·L)²)`, so that
+/// needs `(N·L)² ≤ 1 − ((|Δ⊥| − r_k)/(r + ε))²` with `Δ⊥` the part of `C − C_k` across `L`.
+/// `ahead` and `reach` are the loosest of these over the casters, widened by the fast
+/// `N·L`'s error; a pixel outside them skips every caster test for the light.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NarrowLight {
+    pub g: Quadric,
+    /// The light's arriving colour (U16F16 bits).
+    pub arriving: [u32; 3],
+    /// The spheres that can shadow the sphere from this light (see
+    /// [`PreparedFixed::casters`]).
+    pub casters: u32,
+    /// `N·L` (Q15) at or above this: no caster is ahead.
+    pub ahead: i32,
+    /// `(N·L)²` (Q30) above this: no caster is within reach.
+    pub reach: u32,
 }
 
 /// A sphere's per-frame constants, in scaled units.
@@ -206,6 +423,8 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) casters: heapless::Vec<[u32; L], S>,
     /// The primary directions in the narrow kernel's form, if the frame uses it.
     pub(crate) narrow: Option<NarrowView>,
+    /// Per sphere and light, the narrow kernel's constants (set with `narrow`).
+    pub(crate) narrow_lights: heapless::Vec<[NarrowLight; L], S>,
     pub(crate) use_spans: bool,
 }
 
@@ -295,6 +514,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         lights: heapless::Vec::new(),
         casters: heapless::Vec::new(),
         narrow: None,
+        narrow_lights: heapless::Vec::new(),
         use_spans: true,
     };
 
@@ -336,6 +556,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.lights.clear();
         self.casters.clear();
         self.narrow = None;
+        self.narrow_lights.clear();
         self.use_spans = true;
     }
 
@@ -533,68 +754,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         })
     }
 
-    /// The first caster of sphere `i` (over every light) that [`FastCaster`]'s filter can
-    /// take: one within eight radii of it, both with narrow constants.
-    fn fast_caster(&self, i: usize) -> Option<FastCaster> {
-        let own = self.spheres.get(i)?;
-        let ns = own.narrow.as_ref()?;
-        // The raw radius's bit length (see `NarrowSphere::right`): x/r in Q11 is
-        // x·gain >> (bits + 4).
-        let shift = ns.right + 18 - ns.left + 4;
-        let (gain, r) = (ns.gain as i64, ns.radius as i64);
-        let q11 = |x: i64| (x * gain) >> shift;
-        let eps = q11(self.epsilon.to_bits() as i64) as i32 + 1;
-        for (light_index, light) in self.lights.iter().enumerate().take(256) {
-            let FixedLight::Distant { to_light, .. } = *light else {
-                continue;
-            };
-            let casters = self
-                .casters
-                .get(i)
-                .and_then(|c| c.get(light_index))
-                .copied();
-            let casters = casters.unwrap_or(0);
-            for (k, s) in self.spheres.iter().enumerate().take(32) {
-                if k == i || casters & (1 << k) == 0 {
-                    continue;
-                }
-                let Some(kn) = s.narrow.as_ref() else {
-                    continue;
-                };
-                let c = each3(|j| s.center[j].to_bits() as i64 - own.center[j].to_bits() as i64);
-                if c.iter().any(|v| v.unsigned_abs() > 8 * r as u64) {
-                    continue;
-                }
-                let c = c.map(q11); // |ĉ| ≤ 8·2¹¹ + 1 per component
-                let c_len2 = c.iter().map(|&v| v * v).sum::<i64>();
-                if c_len2 > 64 << 22 {
-                    continue;
-                }
-                let g = c
-                    .iter()
-                    .zip(to_light)
-                    .map(|(&v, l)| v * l.to_bits() as i64)
-                    .sum::<i64>()
-                    >> 30;
-                // Steps of error: N, ĉ and N·L truncated to Q11 (one each per component),
-                // ĉ·L (two), the lift's ε/r; the squares add twice the largest |d| and |t|
-                // (at most |ĉ| + 1) times the error of each.
-                let margin = 8 + 2 * eps as i64;
-                let reach = q11(kn.radius as i64) + margin;
-                let d_max = (c_len2 as u64).isqrt() as i64 + (1 << 11) + margin;
-                return Some(FastCaster {
-                    sphere: k as u8,
-                    light: light_index as u8,
-                    c: c.map(|v| v as i16),
-                    g: g as i16,
-                    ahead: (g + 4 + eps as i64).min(i16::MAX as i64) as i16,
-                    reach2: (reach * reach + 4 * d_max * margin).min(i32::MAX as i64) as i32,
-                });
-            }
-        }
-        None
-    }
-
     /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions.
     fn prepare_narrow(&mut self, scene: &Scene<S, L>) {
         let all_distant = self
@@ -637,8 +796,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 return;
             }
         }
-        let eps = self.epsilon.to_bits() as i64;
-        let step2 = view.step_x.map(|c| 2 * c);
         let intensity: f32 = self
             .lights
             .iter()
@@ -650,60 +807,174 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 FixedLight::Point { .. } => 0.0,
             })
             .sum();
-        // A sphere's constants are only read once the frame's view is set, at the end.
-        for (s, m) in self.spheres.iter_mut().zip(scene.spheres()) {
-            let oc = s.eye_offset.map(|c| c.to_bits());
-            let r = (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
-            let outside = oc.iter().map(|&c| c as i64 * c as i64).sum::<i64>();
-            if outside <= (r + 2 * eps) * (r + 2 * eps) {
-                return;
-            }
-            let bits = 64 - r.leading_zeros();
-            let shift = bits + 14;
-            let left = 32u32.saturating_sub(shift);
-            let cross = [
-                mul_ii(oc[1], step2[2]) - mul_ii(oc[2], step2[1]),
-                mul_ii(oc[2], step2[0]) - mul_ii(oc[0], step2[2]),
-                mul_ii(oc[0], step2[1]) - mul_ii(oc[1], step2[0]),
-            ];
-            let (rf, ef) = (r as f32, eps as f32);
-            let ks_intensity = s.ks.to_num::<f32>() * intensity;
-            let n = m.material.shininess;
-            // Below τ (half a U16F16 step) the lobe is invisible.
-            let tau = 1.0 / 131_072.0;
-            let cutoff = if ks_intensity <= tau {
-                0
-            } else {
-                let h = 1.0 - libm::powf(tau / ks_intensity, 1.0 / n);
-                // Saturates at 2: above 1 the lobe is 0 anyway.
-                ((h + 2.5 * DELTA) * (1u64 << 31) as f32) as u32
-            };
-            let delta = if n >= 32.0 { DELTA_LOBE } else { DELTA };
-            let lobe_error = ks_intensity * 255.0 * libm::sqrtf(n) * delta * 0.61;
-            s.narrow = Some(NarrowSphere {
-                left,
-                right: shift + left - 32,
-                radius: r as u32,
-                gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
-                dw: cross.map(|c| c << left),
-                b_rises: mul_ii(oc[0], step2[0])
-                    + mul_ii(oc[1], step2[1])
-                    + mul_ii(oc[2], step2[2])
-                    > 0,
-                shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
-                    as u32,
-                cutoff,
-                lobe_everywhere: lobe_error <= 0.5 && n <= 256.0,
-                fast: None,
-            });
-        }
+        self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
-            let fast = self.fast_caster(i);
-            if let Some(ns) = self.spheres.get_mut(i).and_then(|s| s.narrow.as_mut()) {
-                ns.fast = fast;
+            let n = scene.spheres().get(i).map_or(1.0, |m| m.material.shininess);
+            if !self.prepare_narrow_sphere(i, &view, (n, intensity)) {
+                return;
             }
         }
         self.narrow = Some(view);
+    }
+
+    /// Sphere `i`'s narrow constants, from the frame's narrow view and its shininess `n`
+    /// and the sum of the lights' brightest channels: `false` if the sphere does not meet
+    /// the narrow kernel's conditions or a number does not fit. Out of line (and the
+    /// quadrics' arithmetic further out) to keep the prepare's stack small.
+    #[inline(never)]
+    fn prepare_narrow_sphere(
+        &mut self,
+        i: usize,
+        view: &NarrowView,
+        (n, intensity): (f32, f32),
+    ) -> bool {
+        let Some(s) = self.spheres.get(i) else {
+            return false;
+        };
+        let (eye_offset, radius_sq, bounds, ks) = (s.eye_offset, s.radius_sq, s.bounds, s.ks);
+        let eps = self.epsilon.to_bits() as i64;
+        let (sx, sy) = (view.step_x.map(|c| c as i64), view.step_y.map(|c| c as i64));
+        let (width, height) = (self.width as i32, self.height as i32);
+        let oc = eye_offset.map(|c| c.to_bits() as i64);
+        let r = (radius_sq.to_bits().max(0) as u64).isqrt() as i64;
+        // |oc|² < 3·2⁶⁰: the scene lies within 2¹³ units.
+        let oc_len2 = oc.iter().map(|&c| mul_ii(c as i32, c as i32)).sum::<i64>();
+        if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
+            return false;
+        }
+        // The quadrics' origin: the middle of the screen rectangle, in the frame.
+        let (x0, y0) = bounds.map_or((0, 0), |b| {
+            let x = ((b.cols.start + b.cols.end) / 2).min(self.width - 1) as i32;
+            let y = ((b.rows.0 + b.rows.1) / 2).min(self.height - 1) as i32;
+            (2 * x + 1 - width, height - 2 * y - 1)
+        });
+        let dc = each3(|k| view.forward[k] as i64 + y0 as i64 * sy[k] + x0 as i64 * sx[k]);
+        // ⌈log₂ max(1, |ô|²)⌉: below 28, since the scene lies within 2¹³ units and r ≥ 1
+        // unit.
+        let r2 = mul_ii(r as i32, r as i32);
+        let ratio = (oc_len2 + r2 - 1).checked_div(r2).unwrap_or(0).max(1) as u64;
+        let log_sq = 64 - (ratio - 1).leading_zeros();
+        let e_shift = 29u32.saturating_sub(log_sq);
+        let g_shift = 28u32.saturating_sub(log_sq.div_ceil(2));
+        // Scale 2^(29 + e_shift)/(r²·2⁵⁸); G's 2^(29 + g_shift)/(r·2⁸⁸).
+        let (Some(e_den), Some(g_den)) = (
+            Divisor::new(r2 as u64, 29 - e_shift as i32),
+            Divisor::new(r as u64, 59 - g_shift as i32),
+        ) else {
+            return false;
+        };
+        // E′·r²·2⁵⁸ = r²·|D|² − |oc × D|² and G·r·2⁸⁸ = (oc × D)·(L × D), with
+        // D = dc + x·sx + y·sy: products of the three directions' Gram matrix and of their
+        // cross products with oc and L.
+        let dirs = [dc, sx, sy];
+        let w = dirs.map(|v| cross_64(oc, v));
+        let Some(e) = e_quadric(r2, &w, &dirs, &e_den) else {
+            return false;
+        };
+        if self
+            .narrow_lights
+            .push([NarrowLight::default(); L])
+            .is_err()
+        {
+            return false;
+        }
+        for light_index in 0..self.lights.len().min(L) {
+            let Some(FixedLight::Distant { to_light, arriving }) =
+                self.lights.get(light_index).copied()
+            else {
+                return false;
+            };
+            let l = to_light.map(|c| c.to_bits() as i64);
+            let Some(g) = g_quadric(&w, &dirs.map(|d| cross_64(l, d)), &g_den) else {
+                return false;
+            };
+            let (ahead, reach) = self.caster_filter(i, light_index, to_light);
+            let light = NarrowLight {
+                g,
+                arriving: arriving.map(|c| c.to_bits()),
+                casters: self.casters(i, light_index),
+                ahead,
+                reach,
+            };
+            match self
+                .narrow_lights
+                .get_mut(i)
+                .and_then(|l| l.get_mut(light_index))
+            {
+                Some(slot) => *slot = light,
+                None => return false,
+            }
+        }
+        let bits = 64 - r.leading_zeros();
+        let (rf, ef) = (r as f32, eps as f32);
+        let ks_intensity = ks.to_num::<f32>() * intensity;
+        let cutoff = lobe_cutoff(ks_intensity, n);
+        // The fast lobe's error: its slope n·(1 − h)^(n − 1) ≤ n times h's error, and the
+        // narrow `pow`'s own (module `narrow`), in levels of the brightest channel.
+        let lobe_error = ks_intensity * 255.0 * (n * H_ERROR + 1.4e-4);
+        let step2 = sx.map(|c| 2 * c);
+        let narrow = NarrowSphere {
+            lobe_everywhere: lobe_error <= 0.5 && n <= 256.0,
+            shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
+                as u32,
+            cutoff,
+            e_shift,
+            g_shift,
+            cross_shift: bits + 14,
+            gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
+            radius: r as u32,
+            b_rises: oc.iter().zip(&step2).map(|(&o, &t)| o * t).sum::<i64>() > 0,
+            origin: (x0, y0),
+            e,
+        };
+        match self.spheres.get_mut(i) {
+            Some(s) => s.narrow = Some(narrow),
+            None => return false,
+        }
+        true
+    }
+
+    /// The caster filter of [`NarrowLight`] for sphere `i` and light `light`
+    /// (`to_light`): `(ahead, reach)`, the loosest over the sphere's casters, widened by
+    /// the fast `N·L`'s error (`2⁻¹²`, and `2⁻¹¹` for its square). With no caster nothing
+    /// passes. Out of line: `f32` work once per sphere and light.
+    #[inline(never)]
+    fn caster_filter(&self, i: usize, light: usize, to_light: V3<Unit>) -> (i32, u32) {
+        let Some(own) = self.spheres.get(i) else {
+            return (i32::MIN, 0);
+        };
+        let mask = self
+            .casters
+            .get(i)
+            .and_then(|c| c.get(light))
+            .copied()
+            .unwrap_or(u32::MAX);
+        let l = to_light.map(|c| c.to_num::<f32>());
+        let lift = libm::sqrtf(own.radius_sq.to_num::<f32>()) + self.epsilon.to_num::<f32>();
+        let (mut ahead, mut reach) = (f32::NEG_INFINITY, f32::NEG_INFINITY);
+        for (k, c) in self.spheres.iter().enumerate() {
+            if k == i || (k < 32 && mask & (1 << k) == 0) {
+                continue;
+            }
+            let delta = each3(|j| (own.center[j] - c.center[j]).to_num::<f32>());
+            let along = delta[0] * l[0] + delta[1] * l[1] + delta[2] * l[2];
+            let across = each3(|j| delta[j] - along * l[j]);
+            let across =
+                libm::sqrtf(across[0] * across[0] + across[1] * across[1] + across[2] * across[2]);
+            let gap = across - libm::sqrtf(c.radius_sq.to_num::<f32>());
+            ahead = ahead.max(-along / lift);
+            reach = reach.max(if gap <= 0.0 {
+                1.0
+            } else {
+                1.0 - (gap / lift) * (gap / lift)
+            });
+        }
+        if ahead == f32::NEG_INFINITY {
+            return (i32::MIN, 0);
+        }
+        let q15 = (ahead + 1.0 / 4096.0).clamp(-2.0, 2.0) * 32768.0;
+        let q30 = (reach + 1.0 / 2048.0).clamp(0.0, 2.0) * (1u64 << 30) as f32;
+        (q15 as i32, q30 as u32)
     }
 
     /// Turns the screen-rectangle spans on (the default) or off. Off, every pixel tests every
