@@ -86,6 +86,18 @@ pub enum RenderError {
         /// The light's index.
         light: usize,
     },
+    /// The frame needs the fixed path's full-width kernel, which this build leaves out
+    /// (crate feature `full-width`): the narrow kernel takes distant lights and the classic
+    /// models only, a field of view up to about 90° on the diagonal, and spheres the camera
+    /// is clearly outside of and more than `4ε` from their casters (see [`crate::fixed`]);
+    /// only [`PreparedFixed::new`](crate::PreparedFixed::new) returns it.
+    NeedsFullWidth {
+        /// The first item the narrow kernel does not take.
+        item: Item,
+        /// Its field that keeps it from the narrow kernel, as spelled in the scene file
+        /// (`type` of a point light, `model`, `vfov`, `center`, `radius`).
+        field: &'static str,
+    },
 }
 
 impl fmt::Display for RenderError {
@@ -122,6 +134,11 @@ impl fmt::Display for RenderError {
             RenderError::SphereLight { light } => write!(
                 f,
                 "light {light}: `radius` is not 0, and this path renders point lights of radius 0 only"
+            ),
+            RenderError::NeedsFullWidth { item, field } => write!(
+                f,
+                "{item}: `{field}` needs the fixed path's full-width kernel, which this build \
+                 leaves out (crate feature `full-width`)"
             ),
         }
     }

@@ -24,20 +24,27 @@
 //! [`super::roots`], which return `None` or 0 for zero and take unsigned input. Nothing here
 //! can panic, in release or debug.
 
+#[cfg(feature = "full-width")]
 use super::exact::shift_saturating;
-#[cfg(feature = "models")]
+#[cfg(all(feature = "models", feature = "full-width"))]
 use super::mul::leading_zeros;
 use super::mul::{mul_ii, mul_iu, mul_uu};
+#[cfg(feature = "full-width")]
 use super::pow::lobe;
-#[cfg(feature = "models")]
+#[cfg(all(feature = "models", feature = "full-width"))]
 use super::prepare::FixedGgx;
-use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
+#[cfg(feature = "full-width")]
+use super::prepare::FixedLight;
+use super::prepare::{FixedSphere, PreparedFixed};
+#[cfg(feature = "full-width")]
 use super::roots::{inv_sqrt, sqrt};
-use super::vector::{
-    dot_len_unit, dot_unit, each3, len_times_unit, length_sq, normalize, to_len, Len, Unit, V3,
-};
+#[cfg(feature = "full-width")]
+use super::vector::{dot_len_unit, length_sq};
+use super::vector::{dot_unit, each3, len_times_unit, normalize, to_len, Len, Unit, V3};
 use crate::pixel::HitRecord;
+#[cfg(feature = "full-width")]
 use crate::runs::Span;
+#[cfg(feature = "full-width")]
 use fixed::types::{I16F48, U16F16};
 
 /// What the kernel found for one pixel: linear colour in U16F16 (saturated) and the hit
@@ -48,6 +55,7 @@ pub(crate) struct Shaded {
 }
 
 /// A light as seen from one surface point.
+#[cfg(feature = "full-width")]
 struct Incoming {
     /// Unit vector toward the light; zero if the point is at the light.
     to_light: V3<Unit>,
@@ -58,6 +66,7 @@ struct Incoming {
 }
 
 /// The unit direction of the unnormalized camera-plane direction `dir` (I16F48).
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(crate) fn ray(dir: V3<I16F48>) -> Option<V3<Unit>> {
     normalize(dir.map(|c| c.to_bits()))
@@ -66,6 +75,7 @@ pub(crate) fn ray(dir: V3<I16F48>) -> Option<V3<Unit>> {
 /// Nearest `t > eps` (raw I16F16) where `origin + t·dir` meets the sphere, `oc` being
 /// `origin − centre`. Closest-approach form: `f = oc − (oc·d)d`, `disc = r² − |f|²`, which
 /// keeps precision for small spheres far away.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn nearest_hit(oc: V3<Len>, dir: V3<Unit>, radius_sq: i64, eps: i64) -> Option<i64> {
     let b = dot_len_unit(oc, dir);
@@ -84,6 +94,7 @@ fn nearest_hit(oc: V3<Len>, dir: V3<Unit>, radius_sq: i64, eps: i64) -> Option<i
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Shades pixel `x` of a row whose spans are `spans`, along the unit ray `d`: `hit`,
     /// `normal`, `lights`, `combine`.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     pub(crate) fn shade(
         &self,
@@ -105,6 +116,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// The nearest sphere with `t > ε` among those whose span on this row covers `x`.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn hit(
         &self,
@@ -147,6 +159,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// `p` of sphere `index` with normal `n`: the sums `Σ vis·I·diffuse` and
     /// `Σ vis·I·specular` (U16F16 per channel, saturating), and, if `record_hits`, the bits
     /// of the lights that are blocked.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn lights(
         &self,
@@ -187,6 +200,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// One light as seen from `p`: direction toward it, arriving colour, shadow-ray length.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn incoming(&self, light: &FixedLight, p: V3<Len>) -> Incoming {
         match *light {
@@ -244,6 +258,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Only the sphere itself and its prepared `casters` can (see [`super::prepare`]). The
     /// sphere itself cannot when the ray leaves its surface outward (`(origin − C)·L ≥ 0`):
     /// then the far root lies behind the origin, so its test is only made when it can hit.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn shadow(&self, index: usize, origin: V3<Len>, incoming: &Incoming, casters: u32) -> bool {
         let eps = self.epsilon.to_bits() as i64;
@@ -269,6 +284,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// `I·max(0, N·L)` per channel, U16F16.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn diffuse(&self, n: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
         let n_dot_l = dot_unit(n, incoming.to_light).clamp(0, u32::MAX as i64) as u32; // U2F30
@@ -278,6 +294,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// `I·lobe` per channel, U16F16, with the lobe's `h = 1 − cos` from a sum of squares.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn specular(&self, s: &FixedSphere, n: V3<Unit>, d: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
         let l = incoming.to_light;
@@ -298,6 +315,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// integer form of [`crate::brdf::terms`]. Diffuse `I·max(0, N·L)·(1 − F)` (or without
     /// `1 − F`), specular `I·max(0, N·L)·F·Σ wₖcₖ·lobeₖ`, every lobe from the same `h` and
     /// the same [`lobe`] as the classic models; `F = F₀ + (1 − F₀)(1 − L·H)⁵` in U2F30.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn normalized(
         &self,
@@ -372,6 +390,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// `combine`: `kd·albedo·diffuse + ks·specular` per channel, U16F16, saturating.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn combine(&self, s: &FixedSphere, diffuse: [u32; 3], specular: [u32; 3]) -> [u32; 3] {
         let ks = s.ks.to_bits();
@@ -424,7 +443,7 @@ pub(super) fn lobe_h(
 /// `s = L·V − (N·L)(N·V)` and `V = −d`, for `A`, `B` and `N·L > 0` in U2F30. The ratio is 1
 /// where `N·L ≥ N·V` and otherwise one 64-bit division, exact to the last of its 30 bits:
 /// the only division of the fixed kernel, and only for Oren–Nayar spheres.
-#[cfg(feature = "models")]
+#[cfg(all(feature = "models", feature = "full-width"))]
 #[inline(always)]
 fn oren_nayar(a: u32, b: u32, n_dot_l: u32, n: V3<Unit>, l: V3<Unit>, d: V3<Unit>) -> u32 {
     const ONE: u32 = 1 << 30;
@@ -444,6 +463,7 @@ fn oren_nayar(a: u32, b: u32, n_dot_l: u32, n: V3<Unit>, l: V3<Unit>, d: V3<Unit
 }
 
 /// Whether sphere `s` has a GGX lobe.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn is_ggx(s: &FixedSphere) -> bool {
     #[cfg(feature = "models")]
@@ -468,6 +488,7 @@ fn is_ggx(s: &FixedSphere) -> bool {
 /// the product of the four factors in [`Wide`]: the term spans from 0 to about
 /// `1/(2πα³)` (10⁷ at the smallest roughness), beyond any one fixed format, and saturates
 /// only where it exceeds U16F16.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn ggx_specular(
     s: &FixedSphere,
@@ -489,7 +510,7 @@ fn ggx_specular(
 }
 
 /// The body of [`ggx_specular`].
-#[cfg(feature = "models")]
+#[cfg(all(feature = "models", feature = "full-width"))]
 #[inline(always)]
 fn ggx_term(g: &FixedGgx, n_dot_l: u32, n: V3<Unit>, d: V3<Unit>, half: Option<V3<Unit>>) -> u32 {
     const ONE: u32 = 1 << 30;
@@ -537,14 +558,14 @@ fn ggx_term(g: &FixedGgx, n_dot_l: u32, n: V3<Unit>, d: V3<Unit>, half: Option<V
 
 /// `m·2^e` with `m` normalized to its top bit (0 is `m = 0`): products of factors whose
 /// range no fixed format holds, to 31 bits, rounded toward zero.
-#[cfg(feature = "models")]
+#[cfg(all(feature = "models", feature = "full-width"))]
 #[derive(Clone, Copy)]
 struct Wide {
     m: u32,
     e: i32,
 }
 
-#[cfg(feature = "models")]
+#[cfg(all(feature = "models", feature = "full-width"))]
 impl Wide {
     /// `v·2^e`, rounded toward zero to 32 significant bits.
     #[inline(always)]
@@ -567,6 +588,7 @@ impl Wide {
 }
 
 /// `acc += v` per channel, saturating.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn add(acc: &mut [u32; 3], v: [u32; 3]) {
     for (a, v) in acc.iter_mut().zip(v) {

@@ -66,13 +66,16 @@
 //!
 //! - `cutoff`: above this `h` the lobe, times `ks` and the sum of the lights' intensities,
 //!   is below `2⁻¹⁷` (half a U16F16 step), even allowing for the error of `h`: the lobe is 0;
-//! - `lobe_everywhere`: whether `ks·ΣI·(n·H_ERROR + 1.4·10⁻⁴)` is at most half an 8-bit
-//!   level (and `n ≤ 256`), so the fast `h` and the narrow `pow` can be used wherever the
-//!   lobe is not 0.
+//! - `fast_lobe_max`: where the fast lobe `λ` is within half an 8-bit level. Its error is
+//!   `ks·ΣI·(n·H_ERROR·(1 − h)^(n−1) + 1.4·10⁻⁴)` (the second term the narrow `pow`'s own,
+//!   for `n ≤ 256`); the slope `n·(1 − h)^(n−1)` is at most `n`, so if `ks·ΣI·n·H_ERROR`
+//!   is within budget the fast lobe serves wherever the lobe is not 0; otherwise it is at
+//!   most `2n·λ` where `h ≤ ½`, so the fast lobe serves where `λ` is below the bound that
+//!   makes `2n·λ·H_ERROR` fit: the tails of the highlight, not its bright part.
 //!
-//! A pixel below the cutoff of a sphere without `lobe_everywhere` (the bright part of a
-//! narrow highlight), or a Blinn-Phong pixel whose `|L + V|` is below ¾ (where the half
-//! vector is ill-conditioned and the fast `h` is not within its bound), takes
+//! A pixel below the cutoff whose fast lobe is not within that (the bright part of a narrow
+//! highlight), or a Blinn-Phong pixel whose `|L + V|` is below ¾ (where the half vector is
+//! ill-conditioned and the fast `h` is not within its bound), takes
 //! `precise_lobe`: `D̂`, `σ` and `N·V` from the same exact `|D|²` and `E′` in 30-bit
 //! fractions ([`super::roots`]), then the full-width kernel's normal and its `h` as a sum of
 //! squares (full relative precision at the peak: `n = 10⁶` keeps its pinpoint highlight),
@@ -344,6 +347,19 @@ fn first<const L: usize>(states: &mut [Step; L], lights: usize) -> &mut [Step] {
     } else {
         states.get_mut(..lights).unwrap_or_default()
     }
+}
+
+/// The fast lobe (U1F16) at `h` (Q31) where it is within half a level (see the module
+/// docs): everywhere the fast `h` is `trusted` if the sphere's `fast_lobe_max` says so,
+/// otherwise where `h ≤ ½` and the lobe is at most `fast_lobe_max`; `None` where the
+/// precise lobe must decide.
+#[inline(always)]
+fn fast_lobe(ns: &NarrowSphere, n: Exact, h: u32, trusted: bool) -> Option<u32> {
+    if !trusted || ns.fast_lobe_max == 0 {
+        return None;
+    }
+    let lobe = narrow_lobe(h, n);
+    (ns.fast_lobe_max >= 1 << 16 || (h <= 1 << 30 && lobe <= ns.fast_lobe_max)).then_some(lobe)
 }
 
 /// `(v >> s) as i32` for `s` in `1..=31`, where the result fits: two 32-bit shifts (a
@@ -675,10 +691,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             if h >= ns.cutoff {
                 continue;
             }
-            let lobe = if ns.lobe_everywhere && trusted {
-                narrow_lobe(h, sphere.shininess)
-            } else {
-                self.precise_lobe(sphere, ns, e, d, light_index)
+            let lobe = match fast_lobe(ns, sphere.shininess, h, trusted) {
+                Some(lobe) => lobe,
+                None => self.precise_lobe(sphere, ns, e, d, light_index),
             };
             for (acc, i) in specular.iter_mut().zip(arriving) {
                 *acc = acc.saturating_add(scale_q16(i, lobe));
@@ -1354,7 +1369,7 @@ mod tests {
                 let (nl, ld) =
                     fast_cosines(seen.dl[0].v, (sigma, sigma2, nv), seen.g[0].v, ns.g_shift);
                 let (h, trusted) = fast_h(sphere.blinn, nl, nv, ld);
-                (!ns.lobe_everywhere || !trusted) && h < ns.cutoff
+                h < ns.cutoff && fast_lobe(ns, sphere.shininess, h, trusted).is_none()
             })
             .count();
         std::println!(

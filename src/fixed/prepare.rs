@@ -128,19 +128,32 @@ fn cross_64(a: V3<i64>, b: V3<i64>) -> V3<i64> {
     ]
 }
 
-/// The `h` (Q31) from which a lobe of exponent `n` times `ks_intensity` (`ks` times the sum
-/// of the lights' brightest channels) is below `τ`, half a U16F16 step, allowing for the
-/// fast `h`'s error ([`H_ERROR`]). Out of line: `powf` works in `f64` with a large stack
-/// frame, which would otherwise be part of every caller's.
-#[inline(never)]
+/// An `h` (Q31) from which a lobe of exponent `n` times `ks_intensity` (`ks` times the sum
+/// of the lights' brightest channels) is below `τ = 2⁻¹⁷`, half a U16F16 step, allowing for
+/// the fast `h`'s error ([`H_ERROR`]).
+///
+/// `(1 − h)ⁿ < τ/k` from `h = 1 − e^(−x)` on, `x = ln(k/τ)/n`; that is below
+/// `x − x²/2 + x³/6` (the series alternates with falling terms for `x < 3`), and
+/// `ln(k/τ) = ln 2·log₂(k/τ)` is at most `ln 2·e + (m − 1)` for `k/τ = m·2^e`, `m` in
+/// `[1, 2)` (as `ln m ≤ m − 1`, within 0.06). So this bound, a few `f32` operations on the
+/// number's bits, is never below the true cutoff: it only shades a few more pixels' lobes
+/// (to 0) than needed, and needs no `powf`.
 fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
-    let tau = 1.0 / 131_072.0;
-    if ks_intensity <= tau {
+    let ratio = ks_intensity * 131_072.0; // k/τ
+    if !(ratio > 1.0 && n > 0.0) {
         return 0;
     }
-    let h = 1.0 - libm::powf(tau / ks_intensity, 1.0 / n);
-    // Saturates at 2: above 1 the lobe is 0 anyway.
-    ((h + 2.0 * H_ERROR) * (1u64 << 31) as f32) as u32
+    let bits = ratio.to_bits();
+    let e = ((bits >> 23) & 0xff) as i32 - 127;
+    let m = f32::from_bits((bits & 0x7f_ffff) | (127 << 23)); // in [1, 2)
+    let x = (e as f32 * core::f32::consts::LN_2 + (m - 1.0)) / n;
+    // From x = 1.5 on, 1: the whole lit lobe (the true cutoff is above 0.77 there).
+    let h = if x < 1.5 {
+        x - x * x * (0.5 - x / 6.0)
+    } else {
+        1.0
+    } + 2.0 * H_ERROR;
+    (h * (1u64 << 31) as f32) as u32
 }
 
 /// The quadric `E′` over `den`, from `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|²` (see [`Quadric`])
@@ -278,8 +291,9 @@ fn mul_128_u(a: i64, b: u64) -> i128 {
 #[derive(Clone, Copy, Debug)]
 #[repr(C)]
 pub(crate) struct NarrowSphere {
-    /// Whether the fast lobe is within half a level wherever it is not 0.
-    pub lobe_everywhere: bool,
+    /// The largest fast lobe (U1F16) that is within half a level where `h ≤ ½`: 2¹⁶ or more
+    /// if it is wherever the lobe is not 0, 0 if nowhere (see the narrow module).
+    pub fast_lobe_max: u32,
     /// `1 − r²/(r + ε)²` in Q30: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
     pub shadow_limit: u32,
     /// `h` (Q31) from which the lobe is 0.
@@ -372,6 +386,7 @@ pub(crate) struct FixedSphere {
 /// A GGX sphere's constants (`α = roughness²`).
 #[cfg(feature = "models")]
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(feature = "full-width"), allow(dead_code))]
 pub(crate) struct FixedGgx {
     /// `α²`, U1F31.
     pub alpha2: u32,
@@ -390,7 +405,8 @@ pub(crate) enum FixedLight {
         arriving: V3<U16F16>,
     },
     /// `power`: `colour·intensity/4π` times the scale squared, per channel, exact; arriving
-    /// is `power/d²` in scaled units.
+    /// is `power/d²` in scaled units. Only the full-width kernel reads them.
+    #[cfg_attr(not(feature = "full-width"), allow(dead_code))]
     Point { position: V3<Len>, power: V3<Exact> },
 }
 
@@ -541,7 +557,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         width: u32,
         height: u32,
     ) -> Result<(), RenderError> {
-        let result = self.prepare_fields(scene, width, height);
+        // Two calls in turn, not one inside the other: the narrow set-up's stack does not
+        // add to the conversion's (the M0 firmware's peak stack is the prepare's).
+        let result = self.prepare_fields(scene, width, height).and_then(|()| {
+            match self.prepare_narrow(scene) {
+                Ok(()) => Ok(()),
+                // Without the full-width kernel a frame the narrow kernel cannot take is
+                // refused.
+                #[cfg(not(feature = "full-width"))]
+                Err((item, field)) => Err(RenderError::NeedsFullWidth { item, field }),
+                #[cfg(feature = "full-width")]
+                Err(_) => Ok(()),
+            }
+        });
         if result.is_err() {
             self.clear();
         }
@@ -560,6 +588,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.use_spans = true;
     }
 
+    #[inline(never)]
     fn prepare_fields(
         &mut self,
         scene: &Scene<S, L>,
@@ -732,38 +761,50 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
             U16F16::checked_from_num(c).unwrap_or(saturated).to_bits()
         });
-        self.prepare_narrow(scene);
         Ok(())
     }
 
-    /// Whether every sphere is more than `4ε` from the surface of each sphere that can shadow
-    /// it (the narrow kernel's caster test assumes its shadow rays start outside them).
-    fn casters_apart(&self) -> bool {
+    /// The first sphere closer than `4ε` to the surface of a sphere that can shadow it (the
+    /// narrow kernel's caster test assumes its shadow rays start outside them), if any.
+    fn casters_not_apart(&self) -> Option<usize> {
         let eps = self.epsilon.to_bits() as i64;
         let radius = |s: &FixedSphere| (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
-        self.spheres.iter().zip(&self.casters).all(|(s, masks)| {
-            let mask = masks.iter().fold(0, |a, m| a | m);
-            self.spheres.iter().enumerate().all(|(k, c)| {
-                if k >= 32 || mask & (1 << k) == 0 {
-                    return k < 32 || core::ptr::eq(s, c);
-                }
-                let d = each3(|i| s.center[i].to_bits() as i64 - c.center[i].to_bits() as i64);
-                let apart = radius(s) + radius(c) + 4 * eps;
-                d.iter().map(|&v| v * v).sum::<i64>() > apart * apart
+        self.spheres
+            .iter()
+            .zip(&self.casters)
+            .position(|(s, masks)| {
+                let mask = masks.iter().fold(0, |a, m| a | m);
+                !self.spheres.iter().enumerate().all(|(k, c)| {
+                    if k >= 32 || mask & (1 << k) == 0 {
+                        return k < 32 || core::ptr::eq(s, c);
+                    }
+                    let d = each3(|i| s.center[i].to_bits() as i64 - c.center[i].to_bits() as i64);
+                    let apart = radius(s) + radius(c) + 4 * eps;
+                    d.iter().map(|&v| v * v).sum::<i64>() > apart * apart
+                })
             })
-        })
     }
 
-    /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions.
-    fn prepare_narrow(&mut self, scene: &Scene<S, L>) {
-        let all_distant = self
+    /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions, or
+    /// says which item and field keep it from them (the first found).
+    #[inline(never)]
+    fn prepare_narrow(&mut self, scene: &Scene<S, L>) -> Result<(), (Item, &'static str)> {
+        if let Some(light) = self
             .lights
             .iter()
-            .all(|l| matches!(l, FixedLight::Distant { .. }));
-        let classic = self.spheres.iter().all(|s| !s.normalized);
+            .position(|l| !matches!(l, FixedLight::Distant { .. }))
+        {
+            return Err((Item::Light(light), "type"));
+        }
+        if let Some(sphere) = self.spheres.iter().position(|s| s.normalized) {
+            return Err((Item::Sphere(sphere), "model"));
+        }
         // The narrow run indexes its tracks by `u8`.
-        if !(all_distant && classic && S <= 256 && self.casters_apart()) {
-            return;
+        if self.spheres.len() > 256 {
+            return Err((Item::Sphere(256), "center"));
+        }
+        if let Some(sphere) = self.casters_not_apart() {
+            return Err((Item::Sphere(sphere), "center"));
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
         let narrow = |v: V3<I16F48>| v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19);
@@ -776,7 +817,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             narrow(self.step_y),
         );
         if !(fits(step_x) && fits(step_y) && forward.iter().all(|c| c.unsigned_abs() < 1 << 30)) {
-            return;
+            return Err((Item::Camera, "vfov"));
         }
         let view = NarrowView {
             forward: forward.map(|c| c as i32),
@@ -793,7 +834,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 view.forward[i] as i64 + dy * view.step_y[i] as i64 + dx * view.step_x[i] as i64
             });
             if len2(d) > 2 * centre {
-                return;
+                return Err((Item::Camera, "vfov"));
             }
         }
         let intensity: f32 = self
@@ -810,11 +851,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
             let n = scene.spheres().get(i).map_or(1.0, |m| m.material.shininess);
-            if !self.prepare_narrow_sphere(i, &view, (n, intensity)) {
-                return;
-            }
+            self.prepare_narrow_sphere(i, &view, (n, intensity))
+                .map_err(|field| (Item::Sphere(i), field))?;
         }
         self.narrow = Some(view);
+        Ok(())
     }
 
     /// Sphere `i`'s narrow constants, from the frame's narrow view and its shininess `n`
@@ -827,9 +868,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         i: usize,
         view: &NarrowView,
         (n, intensity): (f32, f32),
-    ) -> bool {
+    ) -> Result<(), &'static str> {
         let Some(s) = self.spheres.get(i) else {
-            return false;
+            return Err("center");
         };
         let (eye_offset, radius_sq, bounds, ks) = (s.eye_offset, s.radius_sq, s.bounds, s.ks);
         let eps = self.epsilon.to_bits() as i64;
@@ -840,7 +881,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // |oc|² < 3·2⁶⁰: the scene lies within 2¹³ units.
         let oc_len2 = oc.iter().map(|&c| mul_ii(c as i32, c as i32)).sum::<i64>();
         if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
-            return false;
+            return Err("center");
         }
         // The quadrics' origin: the middle of the screen rectangle, in the frame.
         let (x0, y0) = bounds.map_or((0, 0), |b| {
@@ -861,7 +902,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             Divisor::new(r2 as u64, 29 - e_shift as i32),
             Divisor::new(r as u64, 59 - g_shift as i32),
         ) else {
-            return false;
+            return Err("radius");
         };
         // E′·r²·2⁵⁸ = r²·|D|² − |oc × D|² and G·r·2⁸⁸ = (oc × D)·(L × D), with
         // D = dc + x·sx + y·sy: products of the three directions' Gram matrix and of their
@@ -869,52 +910,46 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let dirs = [dc, sx, sy];
         let w = dirs.map(|v| cross_64(oc, v));
         let Some(e) = e_quadric(r2, &w, &dirs, &e_den) else {
-            return false;
+            return Err("radius");
         };
         if self
             .narrow_lights
             .push([NarrowLight::default(); L])
             .is_err()
         {
-            return false;
+            return Err("radius");
         }
         for light_index in 0..self.lights.len().min(L) {
-            let Some(FixedLight::Distant { to_light, arriving }) =
-                self.lights.get(light_index).copied()
-            else {
-                return false;
-            };
-            let l = to_light.map(|c| c.to_bits() as i64);
-            let Some(g) = g_quadric(&w, &dirs.map(|d| cross_64(l, d)), &g_den) else {
-                return false;
-            };
-            let (ahead, reach) = self.caster_filter(i, light_index, to_light);
-            let light = NarrowLight {
-                g,
-                arriving: arriving.map(|c| c.to_bits()),
-                casters: self.casters(i, light_index),
-                ahead,
-                reach,
-            };
+            let light = self
+                .narrow_light(i, light_index, (&w, &dirs), &g_den)
+                .ok_or("radius")?;
             match self
                 .narrow_lights
                 .get_mut(i)
                 .and_then(|l| l.get_mut(light_index))
             {
                 Some(slot) => *slot = light,
-                None => return false,
+                None => return Err("center"),
             }
         }
         let bits = 64 - r.leading_zeros();
         let (rf, ef) = (r as f32, eps as f32);
         let ks_intensity = ks.to_num::<f32>() * intensity;
         let cutoff = lobe_cutoff(ks_intensity, n);
-        // The fast lobe's error: its slope n·(1 − h)^(n − 1) ≤ n times h's error, and the
-        // narrow `pow`'s own (module `narrow`), in levels of the brightest channel.
-        let lobe_error = ks_intensity * 255.0 * (n * H_ERROR + 1.4e-4);
+        // The fast lobe's error, in levels of the brightest channel: its slope
+        // n·(1 − h)^(n − 1) times h's error, and the narrow `pow`'s own (module `narrow`).
+        // The slope is at most n (at h = 0), and at most 2n times the lobe where h ≤ ½.
+        let budget = 0.5 / (ks_intensity * 255.0) - 1.4e-4;
+        let fast_lobe_max = if n > 256.0 || !(budget > 0.0) {
+            0
+        } else if n * H_ERROR <= budget {
+            u32::MAX
+        } else {
+            ((budget / (2.0 * n * H_ERROR)) * 65536.0) as u32
+        };
         let step2 = sx.map(|c| 2 * c);
         let narrow = NarrowSphere {
-            lobe_everywhere: lobe_error <= 0.5 && n <= 256.0,
+            fast_lobe_max,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
                 as u32,
             cutoff,
@@ -929,9 +964,35 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         match self.spheres.get_mut(i) {
             Some(s) => s.narrow = Some(narrow),
-            None => return false,
+            None => return Err("center"),
         }
-        true
+        Ok(())
+    }
+
+    /// Sphere `i`'s narrow constants for light `light`, from the cross products `w` of its
+    /// eye offset with the quadrics' three directions `dirs` (see [`e_quadric`]); `None` if
+    /// the light is not distant or `G` does not fit. Out of line, like the sphere's.
+    #[inline(never)]
+    fn narrow_light(
+        &self,
+        i: usize,
+        light: usize,
+        (w, dirs): (&[V3<i64>; 3], &[V3<i64>; 3]),
+        g_den: &Divisor,
+    ) -> Option<NarrowLight> {
+        let Some(FixedLight::Distant { to_light, arriving }) = self.lights.get(light) else {
+            return None;
+        };
+        let l = to_light.map(|c| c.to_bits() as i64);
+        let g = g_quadric(w, &dirs.map(|d| cross_64(l, d)), g_den)?;
+        let (ahead, reach) = self.caster_filter(i, light, *to_light);
+        Some(NarrowLight {
+            g,
+            arriving: arriving.map(|c| c.to_bits()),
+            casters: self.casters(i, light),
+            ahead,
+            reach,
+        })
     }
 
     /// The caster filter of [`NarrowLight`] for sphere `i` and light `light`

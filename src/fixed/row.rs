@@ -8,15 +8,19 @@
 //! rounding accumulates. Rows, pixels and slices are only reached through `get_mut` and
 //! iterators, and every index is checked, so nothing here can panic.
 
+#[cfg(feature = "full-width")]
 use super::kernel::{ray, Shaded};
+#[cfg(feature = "full-width")]
 use super::mul::{mul_ii, mul_iu};
 use super::narrow::{Narrow, NarrowRun};
 use super::prepare::PreparedFixed;
+#[cfg(feature = "full-width")]
 use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, Encoding};
 use crate::pixel::{pixel_from_codes, FixedShade, HitRecord, Pixel};
 use crate::render::{check_segment, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs_into, walk_runs, Background, Span};
+#[cfg(feature = "full-width")]
 use fixed::types::I16F48;
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
@@ -51,6 +55,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
+    #[cfg(feature = "full-width")]
     /// The full-width kernel on the unnormalized primary direction `dir` of pixel `x`: one
     /// copy in the binary, shared by both row loops.
     #[inline(never)]
@@ -64,6 +69,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         ray(dir).and_then(|d| self.shade(d, x, spans, record_hits))
     }
 
+    #[cfg(feature = "full-width")]
     /// [`Self::direction`] where the narrow kernel is set up: every direction's components
     /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
     /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
@@ -108,11 +114,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let finish = |px: &mut P, shaded: Narrow, column: u32| {
             let shaded = match shaded {
                 Narrow::Done(shaded) => shaded,
+                #[cfg(feature = "full-width")]
                 Narrow::Precise => {
                     let dir = self.narrow_direction_wide(column, y);
                     debug_assert_eq!(dir, self.direction(column, y));
                     self.shade_ray(dir, column, spans, P::NEEDS_HITS)
                 }
+                // Only for data a narrow frame always has (`Narrow::Precise`).
+                #[cfg(not(feature = "full-width"))]
+                Narrow::Precise => None,
             };
             *px = match shaded {
                 Some(s) => encode(s.color, s.hit, (encoding, plain), column, y),
@@ -168,6 +178,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
+    #[cfg(feature = "full-width")]
     /// The unnormalized primary direction of pixel `(x, y)`:
     /// `forward + (h − 2y − 1)·step_y + (2x + 1 − w)·step_x`, exact in I16F48.
     fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
@@ -217,13 +228,21 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                 y,
             )
         });
+        #[cfg(feature = "full-width")]
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             let row = (y, &spans[..], encoding, &background);
             if self.narrow_pixels(row, start as u32, run_pixels) {
                 return;
             }
+            // Without the full-width kernel every prepared frame is a narrow one.
+            #[cfg(not(feature = "full-width"))]
+            for (px, column) in run_pixels.iter_mut().zip(start..) {
+                *px = background.at(column);
+            }
+            #[cfg(feature = "full-width")]
             let mut dir = self.direction(start as u32, y);
+            #[cfg(feature = "full-width")]
             for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                 let shaded = self.shade_ray(dir, column, &spans, P::NEEDS_HITS);
                 *px = match shaded {

@@ -1,0 +1,155 @@
+//! shadeline built without the feature `full-width`: the fixed path holds only its narrow
+//! kernel, and `PreparedFixed` refuses each kind of frame that kernel does not take with
+//! `RenderError::NeedsFullWidth` naming the first item and field that keep it from it, and
+//! leaves the frame empty. Each test fails if the refusal does not fire, as it would in a
+//! build with `full-width` on, where these frames render. The frames it does take are the
+//! same bits as with the feature (`refusal.rs` checks the exponent series' CRC).
+
+use shadeline::{
+    exponent_series, Camera, Item, Light, LinearRgb, Material, Model, PreparedFixed, Render,
+    RenderError, Rgb565, Scene, Specular, Sphere, Vec3,
+};
+
+fn camera(vfov_degrees: f32) -> Camera {
+    Camera {
+        position: Vec3::new(0.0, 0.0, 8.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees,
+    }
+}
+
+fn distant() -> Light {
+    Light::Distant {
+        direction: Vec3::new(-1.0, -1.0, -1.0),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 1.0,
+    }
+}
+
+fn sphere(x: f32, model: Model) -> Sphere {
+    Sphere {
+        center: Vec3::new(x, 0.0, 0.0),
+        radius: 1.0,
+        material: Material {
+            model,
+            ..Material::default()
+        },
+    }
+}
+
+/// A scene of two Phong spheres and a distant light, which the narrow kernel takes, after
+/// `change`.
+fn scene(vfov: f32, change: impl FnOnce(&mut Scene<4, 2>)) -> Scene<4, 2> {
+    let mut s = Scene::new(camera(vfov), LinearRgb::new(0.0, 0.0, 0.1)).unwrap();
+    s.add_sphere(sphere(-1.5, Model::Phong)).unwrap();
+    s.add_sphere(sphere(1.5, Model::Phong)).unwrap();
+    s.add_light(distant()).unwrap();
+    change(&mut s);
+    s
+}
+
+fn refusal(s: &Scene<4, 2>) -> Option<RenderError> {
+    PreparedFixed::new(s, 64, 48).err()
+}
+
+#[test]
+fn the_narrow_frames_render() {
+    let frame = PreparedFixed::new(&scene(40.0, |_| {}), 64, 48).unwrap();
+    let mut line = [Rgb565::default(); 64];
+    frame.render_line(24, &mut line).unwrap();
+    assert_ne!(line[16], line[0], "a sphere, then the background");
+    assert!(PreparedFixed::new(&exponent_series().unwrap(), 320, 240).is_ok());
+}
+
+#[test]
+fn a_point_light_is_refused_at_its_type() {
+    let s = scene(40.0, |s| {
+        s.add_light(Light::Point {
+            position: Vec3::new(0.0, 4.0, 4.0),
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 50.0,
+            radius: 0.0,
+        })
+        .unwrap();
+    });
+    assert_eq!(
+        refusal(&s),
+        Some(RenderError::NeedsFullWidth {
+            item: Item::Light(1),
+            field: "type"
+        })
+    );
+    let message = refusal(&s).unwrap().to_string();
+    assert!(
+        message.contains("light 1") && message.contains("full-width"),
+        "{message}"
+    );
+}
+
+#[test]
+fn a_normalized_or_lambert_sphere_is_refused_at_its_model() {
+    let normalized = [
+        Model::Lambert,
+        Model::NormalizedPhong(Specular::default()),
+        Model::NormalizedBlinnPhong(Specular::default()),
+    ];
+    for model in normalized {
+        let s = scene(40.0, |s| {
+            s.add_sphere(sphere(0.0, model)).unwrap();
+        });
+        assert_eq!(
+            refusal(&s),
+            Some(RenderError::NeedsFullWidth {
+                item: Item::Sphere(2),
+                field: "model"
+            }),
+            "{model:?}"
+        );
+    }
+}
+
+/// At 4:3 the corners' directions are `5/3·tan(vfov/2)` off the axis; the narrow kernel
+/// takes them up to 1 (45°), a `vfov` up to 61.9°.
+#[test]
+fn a_wide_field_of_view_is_refused_at_vfov() {
+    assert_eq!(refusal(&scene(61.0, |_| {})), None);
+    assert_eq!(
+        refusal(&scene(63.0, |_| {})),
+        Some(RenderError::NeedsFullWidth {
+            item: Item::Camera,
+            field: "vfov"
+        })
+    );
+}
+
+#[test]
+fn a_sphere_the_camera_is_inside_is_refused_at_its_center() {
+    let s = scene(40.0, |s| {
+        s.add_sphere(Sphere {
+            center: Vec3::new(0.0, 0.0, 8.5),
+            radius: 1.0,
+            material: Material::default(),
+        })
+        .unwrap();
+    });
+    assert_eq!(
+        refusal(&s),
+        Some(RenderError::NeedsFullWidth {
+            item: Item::Sphere(2),
+            field: "center"
+        })
+    );
+}
+
+#[test]
+fn a_refused_prepare_leaves_the_frame_empty() {
+    let mut frame = PreparedFixed::<4, 2>::EMPTY;
+    frame.prepare(&scene(40.0, |_| {}), 64, 48).unwrap();
+    assert_eq!(frame.width(), 64);
+    let refused = frame.prepare(&scene(120.0, |_| {}), 64, 48);
+    assert!(matches!(refused, Err(RenderError::NeedsFullWidth { .. })));
+    assert_eq!((frame.width(), frame.height()), (0, 0));
+    let mut line = [Rgb565::default(); 64];
+    assert!(frame.render_line(0, &mut line).is_err());
+}
