@@ -57,13 +57,22 @@ use rp2040_hal::dma::{single_buffer, DMAExt, SingleChannel, WriteTarget};
 use rp2040_hal::fugit::RateExtU32;
 use rp2040_hal::multicore::{Multicore, Stack};
 use rp2040_hal::{self as hal, entry, gpio, pac, Clock};
-use shadeline::{exponent_series, PreparedFixed, Render, Rgb565};
+use shadeline::{exponent_series_with_capacity, PreparedFixed, Render, Rgb565, Scene};
 
 /// The second-stage boot loader for the Pico's W25Q080 flash, in the first 256 bytes of flash.
 #[allow(unsafe_code)] // the lint counts `link_section`: the linker, not Rust, places the data
 #[link_section = ".boot2"]
 #[used]
 pub static BOOT2_FIRMWARE: [u8; 256] = rp2040_boot2::BOOT_LOADER_W25Q080;
+
+/// The scene's capacities: the exponent series' 5 spheres and 1 light. A prepared frame holds
+/// the narrow kernel's quadrics per sphere and light, so at the default capacities (16, 8) it
+/// takes 14,456 bytes of RAM; at these, 1,928.
+const SPHERES: usize = 5;
+const LIGHTS: usize = 1;
+
+/// The prepared frame both cores share.
+type Frame = PreparedFixed<SPHERES, LIGHTS>;
 
 /// The Pico's crystal.
 const XTAL_FREQ_HZ: u32 = 12_000_000;
@@ -130,14 +139,14 @@ impl<T> Mailbox<T> {
 
 /// Shades row `y` into `line`. Rows in range into a line of the right length cannot fail; a
 /// row that did would go out black.
-fn shade(frame: &PreparedFixed, y: u32, line: &mut [u8; LINE_BYTES]) {
+fn shade(frame: &Frame, y: u32, line: &mut [u8; LINE_BYTES]) {
     if frame.render_line_bytes::<Rgb565>(y, line).is_err() {
         line.fill(0);
     }
 }
 
 /// Core 1: shades the odd rows, frame after frame, and posts each line to core 0.
-fn core1_rows(frame: &PreparedFixed, first: Line, second: Line) -> ! {
+fn core1_rows(frame: &Frame, first: Line, second: Line) -> ! {
     let mut spare = Some(second);
     let mut line = first;
     loop {
@@ -153,7 +162,7 @@ fn core1_rows(frame: &PreparedFixed, first: Line, second: Line) -> ! {
 /// Core 0's part of a frame: shades the even rows and sends all rows in order by DMA on
 /// `ch`, to the panel behind `spi` (its address window already set). Returns its two line
 /// buffers, the channel and the SPI peripheral when the last line is out of memory.
-fn send_frame<CH, S>(frame: &PreparedFixed, lines: [Line; 2], ch: CH, spi: S) -> ([Line; 2], CH, S)
+fn send_frame<CH, S>(frame: &Frame, lines: [Line; 2], ch: CH, spi: S) -> ([Line; 2], CH, S)
 where
     CH: SingleChannel,
     S: WriteTarget<TransmittedWord = u8>,
@@ -291,9 +300,9 @@ fn main() -> ! {
 
     // The frame, prepared once and shared by both cores. (Preparing uses soft-float on the M0+;
     // an animating firmware prepares a new frame whenever the scene moves.)
-    let scene = exponent_series().unwrap();
-    let prepared = PreparedFixed::new(&scene, WIDTH, HEIGHT).unwrap();
-    let frame: &'static PreparedFixed = cortex_m::singleton!(: PreparedFixed = prepared).unwrap();
+    let scene: Scene<SPHERES, LIGHTS> = exponent_series_with_capacity().unwrap();
+    let prepared = Frame::new(&scene, WIDTH, HEIGHT).unwrap();
+    let frame: &'static Frame = cortex_m::singleton!(: Frame = prepared).unwrap();
     let lines = cortex_m::singleton!(: [[u8; LINE_BYTES]; 4] = [[0; LINE_BYTES]; 4]).unwrap();
     let [mine_a, mine_b, theirs_a, theirs_b] = lines;
 
