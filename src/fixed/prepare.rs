@@ -140,7 +140,7 @@ fn cross_64(a: V3<i64>, b: V3<i64>) -> V3<i64> {
 /// (to 0) than needed, and needs no `powf`.
 fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
     let ratio = ks_intensity * 131_072.0; // k/τ
-    if !(ratio > 1.0 && n > 0.0) {
+    if ratio.is_nan() || ratio <= 1.0 || n.is_nan() || n <= 0.0 {
         return 0;
     }
     let bits = ratio.to_bits();
@@ -558,17 +558,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     ) -> Result<(), RenderError> {
         // Two calls in turn, not one inside the other: the narrow set-up's stack does not
         // add to the conversion's (the M0 firmware's peak stack is the prepare's).
-        let result = self.prepare_fields(scene, width, height).and_then(|()| {
-            match self.prepare_narrow(scene) {
-                Ok(()) => Ok(()),
-                // Without the full-width kernel a frame the narrow kernel cannot take is
-                // refused.
-                #[cfg(not(feature = "full-width"))]
-                Err((item, field)) => Err(RenderError::NeedsFullWidth { item, field }),
-                #[cfg(feature = "full-width")]
-                Err(_) => Ok(()),
-            }
-        });
+        let result = self
+            .prepare_fields(scene, width, height)
+            .and_then(|()| self.prepare_narrow_or_refuse(scene));
         if result.is_err() {
             self.clear();
         }
@@ -763,6 +755,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         Ok(())
     }
 
+    /// [`Self::prepare_narrow`], and without the full-width kernel the refusal of a frame the
+    /// narrow kernel does not take.
+    fn prepare_narrow_or_refuse(&mut self, scene: &Scene<S, L>) -> Result<(), RenderError> {
+        let narrow = self.prepare_narrow(scene);
+        #[cfg(not(feature = "full-width"))]
+        if let Err((item, field)) = narrow {
+            return Err(RenderError::NeedsFullWidth { item, field });
+        }
+        #[cfg(feature = "full-width")]
+        let _ = narrow;
+        Ok(())
+    }
+
     /// The first sphere closer than `4ε` to the surface of a sphere that can shadow it (the
     /// narrow kernel's caster test assumes its shadow rays start outside them), if any.
     fn casters_not_apart(&self) -> Option<usize> {
@@ -939,7 +944,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // n·(1 − h)^(n − 1) times h's error, and the narrow `pow`'s own (module `narrow`).
         // The slope is at most n (at h = 0), and at most 2n times the lobe where h ≤ ½.
         let budget = 0.5 / (ks_intensity * 255.0) - 1.4e-4;
-        let fast_lobe_max = if n > 256.0 || !(budget > 0.0) {
+        let fast_lobe_max = if n > 256.0 || budget.is_nan() || budget <= 0.0 {
             0
         } else if n * H_ERROR <= budget {
             u32::MAX
