@@ -484,10 +484,23 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     ) -> <W::Lane as Real>::Mask {
         let eps = W::Lane::splat(self.epsilon);
         let mut blocked = W::Lane::lt(W::Lane::splat(1.0), W::Lane::splat(0.0));
-        for (k, s) in self.spheres.iter().enumerate() {
-            if k < 32 && casters & (1 << k) == 0 {
+        // The casters' bits, lowest first, then every sphere from 32 on (only a capacity
+        // above 32 has them): a walk over the set bits rather than over every sphere (a lit
+        // pixel of the exponent series tests one or two of its five).
+        let mut rest = casters;
+        let mut next = 32;
+        while rest != 0 || (S > 32 && next < self.spheres.len()) {
+            let k = if rest != 0 {
+                let k = rest.trailing_zeros() as usize;
+                rest &= rest - 1;
+                k
+            } else {
+                next += 1;
+                next - 1
+            };
+            let Some(s) = self.spheres.get(k) else {
                 continue;
-            }
+            };
             let oc = surface.shadow_origin - Vec3::splat(s.center);
             let hit = meets(
                 oc,
