@@ -210,7 +210,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// `ray`: the direction through each pixel centre, `u = x·right + row.base` with
     /// `x = (2(i + ½)/w − 1)·(w/h)·tan(vfov/2)`, and the unit `d = normalize(u)`.
     #[inline(always)]
-    fn ray(&self, row: &Row, x0: u32) -> (Vec3<W::Lane>, Vec3<W::Lane>) {
+    pub(super) fn ray(&self, row: &Row, x0: u32) -> (Vec3<W::Lane>, Vec3<W::Lane>) {
         let one = W::Lane::splat(1.0);
         let i = W::Lane::ramp(x0 as f32 + 0.5);
         let xc = ((i * W::Lane::splat(2.0)) / W::Lane::splat(self.width_f) - one)

@@ -10,6 +10,7 @@
 //! | `spans` | each sphere's analytic, conservative pixel span on a row |
 //! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
 //! | `kernel` | the per-pixel stages: `ray`, `hit`, `normal`, `lights` (`incoming`, `shadow`, `diffuse`, `specular`), `combine` |
+//! | `narrow` | the narrow kernel: classic models under distant lights, from quadrics along the row |
 //! | `area` | sphere lights: the diffuse horizon, the covered share of the light's cap, `acos` |
 //! | `edges` | analytic anti-aliasing of the silhouettes: each outline's coverage of a pixel, and the blend |
 //! | `lane` | the lane trait: [`Real`](crate::real::Real) plus the operations only lanes have, each exactly specified |
@@ -28,6 +29,7 @@ mod edges;
 mod kernel;
 mod lane;
 mod math;
+mod narrow;
 mod prepare;
 mod row;
 mod spans;

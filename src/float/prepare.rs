@@ -14,11 +14,13 @@
 //! ([`Row`]) that the spans and the kernel's `ray` stage share.
 
 use super::lane::{Lane, Rooted, SquareRoot};
+use super::narrow::{NarrowLight, NarrowSphere, NarrowView, SHARPEST};
 use crate::brdf::Params;
 use crate::pixel::LinearRgb;
 use crate::render::{RenderError, MAX_DIMENSION};
 use crate::scene::{Light, Scene};
 use crate::vec3::Vec3;
+use core::cmp::Ordering;
 use core::marker::PhantomData;
 
 /// Arriving light is clamped to this, so that a point light sitting on a surface (distance
@@ -126,6 +128,8 @@ pub(crate) struct PreparedSphere {
     /// The silhouette's constants for edge anti-aliasing (see `edges`).
     #[cfg(feature = "antialias")]
     pub outline: Outline,
+    /// The narrow kernel's constants, if the frame takes it (see `narrow`).
+    pub narrow: Option<NarrowSphere>,
 }
 
 #[cfg(feature = "antialias")]
@@ -213,6 +217,10 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// without one are shaded by a kernel that holds only the classic models' code (see
     /// `float::row`).
     pub(crate) normalized: bool,
+    /// The narrow kernel's frame constants, if the frame takes it (see `narrow`).
+    pub(crate) narrow: Option<NarrowView<L>>,
+    /// Per sphere and light, the narrow kernel's caster filter (set with `narrow`).
+    pub(crate) narrow_lights: heapless::Vec<[NarrowLight; L], S>,
     _path: PhantomData<W>,
 }
 
@@ -259,6 +267,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 ggx: params.ggx > 0.0,
                 #[cfg(feature = "antialias")]
                 outline: Outline::of(s.center - eye, s.radius, pixel, right, up),
+                narrow: None,
             };
             // Same capacity as the scene: cannot fail.
             let pushed = spheres.push(p);
@@ -322,7 +331,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             .iter()
             .any(|l| matches!(l, PreparedLight::Sphere { .. }));
         let normalized = spheres.iter().any(|s| s.normalized);
-        Ok(Prepared {
+        let mut frame = Prepared {
             width,
             height,
             eye,
@@ -346,8 +355,131 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             #[cfg(feature = "area-lights")]
             sphere_lights,
             normalized,
+            narrow: None,
+            narrow_lights: heapless::Vec::new(),
             _path: PhantomData,
-        })
+        };
+        frame.prepare_narrow(scene);
+        Ok(frame)
+    }
+
+    /// Sets up the narrow kernel (see `narrow`) if the frame meets its conditions: every
+    /// light distant, every sphere classic with `ks·ΣI·n` within [`SHARPEST`], the camera
+    /// clearly outside every sphere.
+    fn prepare_narrow(&mut self, scene: &Scene<S, L>) {
+        let mut to_light = [Vec3::default(); L];
+        let mut intensity = 0.0f32;
+        for (t, l) in to_light.iter_mut().zip(&self.lights) {
+            let PreparedLight::Distant { to_light, arriving } = *l else {
+                return;
+            };
+            *t = to_light;
+            intensity += arriving.x.max(arriving.y).max(arriving.z);
+        }
+        if self.normalized {
+            return;
+        }
+        let sx = self.right.scale(self.x_scale / self.width_f);
+        let sy = self.up.scale(self.y_scale / self.height_f);
+        let eps = self.epsilon;
+        let mut narrow_lights = heapless::Vec::new();
+        for i in 0..self.spheres.len() {
+            let Some(s) = self.spheres.get(i).copied() else {
+                return;
+            };
+            let r = 1.0 / s.inv_radius;
+            let oc = s.eye_offset;
+            // A NaN sharpness takes the general kernel.
+            let sharp = s.params.ks * intensity * s.params.shininess;
+            let within = matches!(
+                sharp.partial_cmp(&SHARPEST),
+                Some(Ordering::Less | Ordering::Equal)
+            );
+            if oc.dot(oc) <= (r + 2.0 * eps) * (r + 2.0 * eps) || !within {
+                return;
+            }
+            let o = oc.scale(s.inv_radius);
+            // The middle column: the centre's projection, as a whole number of half pixels.
+            let c = -oc;
+            let (cx, cz) = (c.dot(self.right), c.dot(self.forward));
+            let origin =
+                (cx / cz * (self.width_f / self.x_scale)).clamp(-self.width_f, self.width_f);
+            let origin = libm::roundf(origin);
+            let narrow = NarrowSphere {
+                o,
+                o_sx: o.cross(sx),
+                origin: if origin.is_finite() { origin } else { 0.0 },
+                radius: r,
+                own_limit: eps * (2.0 * r + eps) / ((r + eps) * (r + eps)),
+            };
+            let mut lights = [NarrowLight::default(); L];
+            for (k, (nl, t)) in lights.iter_mut().zip(&to_light).enumerate() {
+                *nl = self.narrow_filter(scene, i, k, *t);
+            }
+            if narrow_lights.push(lights).is_err() {
+                return;
+            }
+            if let Some(sphere) = self.spheres.get_mut(i) {
+                sphere.narrow = Some(narrow);
+            }
+        }
+        self.narrow_lights = narrow_lights;
+        self.narrow = Some(NarrowView {
+            sx,
+            sy,
+            to_light,
+            l_sx: to_light.map(|l| l.cross(sx)),
+        });
+    }
+
+    /// Sphere `i`'s caster filter for distant light `k` toward `to_light` (see the fixed
+    /// path's `NarrowLight`: the loosest of `N·L < −Δ·L/(r + ε)` and
+    /// `(N·L)² ≤ 1 − ((|Δ⊥| − r_c)/(r + ε))²` over the casters `c`, `Δ = C − C_c`),
+    /// widened by `2⁻¹⁶`, far above the narrow `N·L`'s error. With no caster nothing passes.
+    fn narrow_filter(
+        &self,
+        scene: &Scene<S, L>,
+        i: usize,
+        k: usize,
+        to_light: Vec3,
+    ) -> NarrowLight {
+        let mask = scene
+            .lights()
+            .get(k)
+            .map_or(0, |light| scene.shadow_casters(i, light));
+        let Some(own) = self.spheres.get(i) else {
+            return NarrowLight::default();
+        };
+        let lift = 1.0 / own.inv_radius + self.epsilon;
+        let (mut ahead, mut reach) = (f32::NEG_INFINITY, f32::NEG_INFINITY);
+        for (c, other) in self.spheres.iter().enumerate() {
+            if c == i || c >= 32 || mask & (1 << c) == 0 {
+                continue;
+            }
+            let delta = own.center - other.center;
+            let along = delta.dot(to_light);
+            let across = delta - to_light.scale(along);
+            let gap = libm::sqrtf(across.dot(across)) - libm::sqrtf(other.radius_sq);
+            ahead = ahead.max(-along / lift);
+            reach = reach.max(if gap <= 0.0 {
+                1.0
+            } else {
+                1.0 - (gap / lift) * (gap / lift)
+            });
+        }
+        if mask == 0 || ahead == f32::NEG_INFINITY {
+            return NarrowLight {
+                casters: mask,
+                ahead: f32::NEG_INFINITY,
+                reach: f32::NEG_INFINITY,
+            };
+        }
+        let margin = 1.0 / 65536.0;
+        NarrowLight {
+            casters: mask,
+            ahead: ahead + margin,
+            reach: reach + 2.0 * margin,
+        }
     }
 
     /// Turns the scanline spans on (the default) or off. Off, every packet tests every sphere:

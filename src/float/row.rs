@@ -15,6 +15,7 @@
 
 use super::kernel::Packet;
 use super::lane::Lane;
+use super::narrow::NarrowRow;
 use super::prepare::{FloatPath, Prepared, Row};
 use crate::encoding::{linear_code, luma, Encoding};
 use crate::pixel::{pixel_from_codes, HitRecord, LinearRgb, Pixel, Shade};
@@ -66,7 +67,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         // Two kernels on the scalar paths: frames without a normalized material get one that
         // holds only the classic models' code (see the kernel's module docs). The SIMD paths
         // keep one kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
-        if W::Lane::LANES > 1 || self.normalized {
+        // Frames the narrow kernel takes (see `narrow`) go there.
+        if self.narrow.is_some() {
+            self.shade_narrow_runs::<P>(out, run, &row, &spans, &runs);
+        } else if W::Lane::LANES > 1 || self.normalized {
             self.shade_runs::<P, true>(out, run, &row, &spans, &runs);
         } else {
             self.shade_runs::<P, false>(out, run, &row, &spans, &runs);
@@ -112,6 +116,58 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             }
         });
     }
+
+    /// [`Self::shade_runs`] for frames the narrow kernel takes: the row's quadrics once
+    /// (`narrow_row`), then each packet from them; while a packet's only candidate stays the
+    /// same sphere, its constants are looked up once for all of its packets.
+    #[inline(always)]
+    fn shade_narrow_runs<P: Pixel>(
+        &self,
+        out: &mut [P],
+        (x, y, encoding, background): (usize, u32, Encoding, &Background<P>),
+        row: &Row,
+        spans: &[Option<Span>],
+        runs: &[Span],
+    ) {
+        let mut nrow = NarrowRow::empty();
+        self.narrow_row(&mut nrow, y, spans);
+        let nrow = &nrow;
+        // Anti-aliased frames saturate every colour, as the general kernel's do.
+        #[cfg(feature = "antialias")]
+        let flags = (P::NEEDS_HITS, P::LEVELS.is_none() || self.antialias);
+        #[cfg(not(feature = "antialias"))]
+        let flags = (P::NEEDS_HITS, P::LEVELS.is_none());
+        #[cfg(not(feature = "antialias"))]
+        let _ = row;
+        walk_runs(out, x, runs, background, |start, run_pixels| {
+            let mut candidates = Candidates::<S>::new();
+            let mut single = None;
+            for (chunk_index, chunk) in run_pixels.chunks_mut(W::Lane::LANES).enumerate() {
+                let x0 = (start + chunk_index * W::Lane::LANES) as u32;
+                let x1 = x0 + chunk.len() as u32;
+                let (list, fresh) = candidates.overlapping_fresh(spans, x0, x1);
+                if fresh {
+                    single = match list {
+                        [k] => self.single(*k as usize, nrow),
+                        _ => None,
+                    };
+                }
+                if list.is_empty() {
+                    background.fill(chunk, x0 as usize);
+                    continue;
+                }
+                let shaded = match &single {
+                    Some(single) => self.shade_single((y, nrow), single, x0, flags),
+                    None => self.shade_narrow((y, nrow), x0, list, flags.0, flags.1),
+                };
+                #[cfg(feature = "antialias")]
+                let packet = self.narrow_antialiased(shaded, (row, nrow), x0, list);
+                #[cfg(not(feature = "antialias"))]
+                let packet = shaded.0;
+                store_packet(chunk, &packet, encoding, x0, y);
+            }
+        });
+    }
 }
 
 /// The spheres whose spans overlap a packet's pixels, in scene order, kept from one packet
@@ -143,7 +199,15 @@ impl<const S: usize> Candidates<S> {
     /// The spheres whose spans overlap `x0..x1`, for packets that walk left to right.
     #[inline(always)]
     fn overlapping(&mut self, spans: &[Option<Span>], x0: u32, x1: u32) -> &[u16] {
-        if x1 > self.joins || x0 >= self.leaves {
+        self.overlapping_fresh(spans, x0, x1).0
+    }
+
+    /// [`Self::overlapping`], and whether the list is new for this packet (`false`: the
+    /// last packet's list holds).
+    #[inline(always)]
+    fn overlapping_fresh(&mut self, spans: &[Option<Span>], x0: u32, x1: u32) -> (&[u16], bool) {
+        let fresh = x1 > self.joins || x0 >= self.leaves;
+        if fresh {
             self.list.clear();
             self.joins = u32::MAX;
             self.leaves = u32::MAX;
@@ -159,7 +223,7 @@ impl<const S: usize> Candidates<S> {
                 }
             }
         }
-        &self.list
+        (&self.list, fresh)
     }
 }
 
