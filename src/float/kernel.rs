@@ -1,7 +1,9 @@
 //! The per-pixel stages of the float paths, written once over [`Lane`]: the scalar path runs
 //! them on `f32`, the SIMD paths on `f32x4`/`f32x8`, one packet of consecutive pixels per call.
 //! The fixed kernel (`src/fixed/kernel.rs`) has the same stages under the same names, in the
-//! same order.
+//! same order. This is the general kernel: frames of classic spheres under distant lights
+//! take the narrow kernel instead ([`super::narrow`]), which shades from per-row quadrics
+//! and calls into this one only for shadow rays toward other spheres and for outlines.
 //!
 //! | stage | what it computes |
 //! |---|---|
@@ -11,7 +13,7 @@
 //! | `normal` | `N = (P − C)·(1/r)`: no square root |
 //! | `lights` | the loop over every light, accumulating the diffuse and specular sums |
 //! | `incoming` | per light: direction `L` toward it, arriving colour `I`, shadow-ray length |
-//! | `shadow` | per light: a ray from `P + ε·N` toward the light, tested against every sphere |
+//! | `shadow` | per light: a ray from `P + ε·N` toward the light, tested against each sphere that can shadow the hit sphere |
 //! | `diffuse` | per light: `Σ vis·I·max(0, N·L)` |
 //! | `specular` | per light: `Σ vis·I·max(0, c)^n`, `c = R·V` (Phong) or `N·H` (Blinn-Phong) |
 //! | `combine` | `kd·albedo·diffuse + ks·specular`, saturated at `f32::MAX`; the background on misses |
@@ -34,11 +36,12 @@
 //! lane hit) and those skip work whose result would be discarded. The normalized models'
 //! extra work (their constants, more lobes, Fresnel) is such a branch too: a packet in which
 //! no lane shows a normalized material does the classic models' arithmetic alone. On the
-//! scalar paths, a frame with no normalized material at all is shaded by a second copy of
-//! the kernel that holds none of that code (`shade::<false>`, chosen once per row): smaller,
-//! with more of its values in registers. The classic exponent series costs 5.4% fewer
-//! instructions so on a Cortex-M4F (QEMU count) and 6% fewer on x86-64 (callgrind), for
-//! about 7.6 KB more flash per scalar path a firmware renders. The SIMD paths keep one
+//! scalar paths, a frame with no normalized material at all (one the narrow kernel does not
+//! take: point lights, a highlight past its cap, the camera inside a sphere) is shaded by a
+//! second copy of the kernel that holds none of that code (`shade::<false>`, chosen once per
+//! row): smaller, with more of its values in registers. The classic exponent series shaded
+//! by this kernel costs 5.4% fewer instructions so on a Cortex-M4F (QEMU count) and 6% fewer
+//! on x86-64 (callgrind), for about 7.6 KB more flash per scalar path a firmware renders. The SIMD paths keep one
 //! kernel, which serves them better (3% fewer instructions with AVX2).
 //!
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
