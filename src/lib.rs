@@ -132,6 +132,8 @@ pub mod reference;
 pub mod render;
 mod runs;
 pub mod scene;
+#[cfg(test)]
+mod test_scenes;
 mod vec3;
 
 pub use encoding::{Encoding, Transfer};

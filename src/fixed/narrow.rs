@@ -1116,6 +1116,7 @@ fn narrow_lobe(h: u32, n: Exact) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::test_scenes::uniform;
 
     #[test]
     fn rsqrt_within_one_and_a_half_steps_of_two_to_the_minus_15() {
@@ -1215,48 +1216,17 @@ mod tests {
     /// Random narrow frames (one to three distant lights, up to six Phong and Blinn-Phong
     /// spheres that may overlap and shadow each other), from `seed`.
     fn random_frames(seed: u64, count: usize) -> Vec<PreparedFixed<16, 8>> {
-        use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
+        use crate::test_scenes::{random_classic_scene, Draw};
         use crate::vec3::Vec3;
-        use crate::LinearRgb;
         let mut next = uniform(seed);
+        let draw = Draw {
+            half_extent: Vec3::new(3.0, 2.0, 3.0),
+            radius: (0.3, 1.5),
+            varied: false,
+        };
         let mut out = Vec::new();
         for _ in 0..count {
-            let angle = next(-3.1, 3.1);
-            let camera = Camera {
-                position: Vec3::new(9.0 * angle.sin(), next(-3.0, 3.0), 9.0 * angle.cos()),
-                look_at: Vec3::new(0.0, 0.0, 0.0),
-                up: Vec3::new(0.0, 1.0, 0.0),
-                vfov_degrees: next(25.0, 60.0),
-            };
-            let mut scene: Scene<16, 8> =
-                Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).unwrap();
-            for _ in 0..(next(1.0, 6.99) as usize) {
-                let model = if next(0.0, 1.0) < 0.5 {
-                    Model::Phong
-                } else {
-                    Model::BlinnPhong
-                };
-                let sphere = Sphere {
-                    center: Vec3::new(next(-3.0, 3.0), next(-2.0, 2.0), next(-3.0, 3.0)),
-                    radius: next(0.3, 1.5),
-                    material: Material {
-                        albedo: LinearRgb::new(0.5, 0.5, 0.5),
-                        kd: 0.8,
-                        ks: 0.3,
-                        shininess: libm::powf(2.0, next(0.0, 11.0)),
-                        model,
-                    },
-                };
-                scene.add_sphere(sphere).unwrap();
-            }
-            for _ in 0..(next(1.0, 3.99) as usize) {
-                let light = Light::Distant {
-                    direction: Vec3::new(next(-1.0, 1.0), next(-1.0, 0.2), next(-1.0, 1.0)),
-                    color: LinearRgb::new(1.0, 1.0, 1.0),
-                    intensity: 1.0,
-                };
-                scene.add_light(light).unwrap();
-            }
+            let scene = random_classic_scene::<16, 8>(&mut next, &draw);
             if let Ok(frame) = PreparedFixed::new(&scene, 96, 72) {
                 if frame.narrow.is_some() {
                     out.push(frame);
@@ -1429,52 +1399,20 @@ mod tests {
     #[test]
     fn random_narrow_frames_within_budget() {
         use crate::reference::{self, RefPixel};
-        use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
+        use crate::test_scenes::{random_classic_scene, Draw};
         use crate::vec3::Vec3;
-        use crate::{HitRecord, LinearRgb, Render, Rgb888};
+        use crate::{HitRecord, Render, Rgb888};
         let mut next = uniform(0x2545_f491_4f6c_dd1du64);
         let (w, h) = (160u32, 120u32);
         let (mut narrow_frames, mut worst, mut differ) = (0, 0u16, 0usize);
         let (mut pixels, mut within_one) = (0usize, 0usize);
+        let draw = Draw {
+            half_extent: Vec3::new(3.0, 2.0, 3.0),
+            radius: (0.3, 1.5),
+            varied: true,
+        };
         for _ in 0..24 {
-            let angle = next(-3.1, 3.1);
-            let camera = Camera {
-                position: Vec3::new(9.0 * angle.sin(), next(-3.0, 3.0), 9.0 * angle.cos()),
-                look_at: Vec3::new(0.0, 0.0, 0.0),
-                up: Vec3::new(0.0, 1.0, 0.0),
-                vfov_degrees: next(25.0, 60.0),
-            };
-            let mut scene: Scene<8, 4> =
-                Scene::new(camera, LinearRgb::new(next(0.0, 0.3), 0.1, 0.2)).unwrap();
-            for _ in 0..(next(1.0, 6.99) as usize) {
-                let model = if next(0.0, 1.0) < 0.5 {
-                    Model::Phong
-                } else {
-                    Model::BlinnPhong
-                };
-                scene
-                    .add_sphere(Sphere {
-                        center: Vec3::new(next(-3.0, 3.0), next(-2.0, 2.0), next(-3.0, 3.0)),
-                        radius: next(0.3, 1.5),
-                        material: Material {
-                            albedo: LinearRgb::new(next(0.0, 1.0), next(0.0, 1.0), next(0.0, 1.0)),
-                            kd: next(0.2, 0.9),
-                            ks: next(0.0, 0.6),
-                            shininess: libm::powf(2.0, next(0.0, 11.0)),
-                            model,
-                        },
-                    })
-                    .unwrap();
-            }
-            for _ in 0..(next(1.0, 3.99) as usize) {
-                scene
-                    .add_light(Light::Distant {
-                        direction: Vec3::new(next(-1.0, 1.0), next(-1.0, 0.2), next(-1.0, 1.0)),
-                        color: LinearRgb::new(1.0, next(0.7, 1.0), next(0.7, 1.0)),
-                        intensity: next(0.5, 2.0),
-                    })
-                    .unwrap();
-            }
+            let scene = random_classic_scene::<8, 4>(&mut next, &draw);
             let Ok(frame) = PreparedFixed::new(&scene, w, h) else {
                 continue;
             };
@@ -1546,17 +1484,6 @@ mod tests {
             worst.2
         );
         assert!(worst.0 < 2e-4, "{worst:?}");
-    }
-
-    /// A xorshift generator of uniform numbers in `[lo, hi)`, from `seed`.
-    fn uniform(seed: u64) -> impl FnMut(f32, f32) -> f32 {
-        let mut state = seed;
-        move |lo: f32, hi: f32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-        }
     }
 
     /// The caster filter only skips tests the exact one fails: on random frames of spheres

@@ -724,12 +724,30 @@ fn combine<T: Lane>(
     background: Vec3<T>,
     saturate: bool,
 ) -> Vec3<T> {
-    let kd_albedo = params.kd_albedo;
+    combine_with(
+        (params.kd_albedo, params.ks),
+        (diffuse, specular),
+        any_hit,
+        background,
+        saturate,
+    )
+}
+
+/// [`combine`] from the two constants it reads, `kd·albedo` and `ks`: the narrow kernel's
+/// `combine` too.
+#[inline(always)]
+pub(super) fn combine_with<T: Lane>(
+    (kd_albedo, ks): (Vec3<T>, T),
+    (diffuse, specular): (Vec3<T>, Vec3<T>),
+    any_hit: T::Mask,
+    background: Vec3<T>,
+    saturate: bool,
+) -> Vec3<T> {
     let shaded = Vec3::new(
         kd_albedo.x * diffuse.x,
         kd_albedo.y * diffuse.y,
         kd_albedo.z * diffuse.z,
-    ) + specular * params.ks;
+    ) + specular * ks;
     let shaded = if saturate {
         let cap = T::splat(f32::MAX);
         Vec3::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap))

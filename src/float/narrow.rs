@@ -64,7 +64,7 @@
 //! while a packet's only candidate stays the same sphere its constants are looked up once
 //! (`single`, `shade_single`).
 
-use super::kernel::{meets, Packet};
+use super::kernel::{combine_with, meets, Packet};
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, PreparedLight};
 use crate::brdf::Pow;
@@ -584,19 +584,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 specular_sum = specular_sum + arriving * lobe;
             }
         }
-        let kd = hitting.kd_albedo;
-        let shaded = Vec3::new(
-            kd.x * diffuse_sum.x,
-            kd.y * diffuse_sum.y,
-            kd.z * diffuse_sum.z,
-        ) + specular_sum * hitting.ks;
-        let shaded = if saturate {
-            let cap = W::Lane::splat(f32::MAX);
-            Vec3::new(shaded.x.min(cap), shaded.y.min(cap), shaded.z.min(cap))
-        } else {
-            shaded
-        };
-        packet.color = Vec3::select(geo.any_hit, shaded, packet.color);
+        packet.color = combine_with(
+            (hitting.kd_albedo, hitting.ks),
+            (diffuse_sum, specular_sum),
+            geo.any_hit,
+            packet.color,
+            saturate,
+        );
     }
 
     /// The lanes of `near` (those the caster filter lets through) whose shadow ray from
@@ -704,70 +698,23 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
+    use crate::scene::Scene;
+    use crate::test_scenes::{random_classic_scene, uniform, Draw};
     use crate::{HitRecord, LinearRgb, Render, Rgb888, Scalar, Simd8};
     use std::vec::Vec;
-
-    fn uniform(seed: u64) -> impl FnMut(f32, f32) -> f32 {
-        let mut state = seed;
-        move |lo: f32, hi: f32| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
-        }
-    }
 
     /// Random frames of classic spheres under distant lights, close enough to shadow each
     /// other, with highlights up to `n = 2¹¹`: the frames the narrow kernel takes.
     fn random_scenes(seed: u64, count: usize) -> Vec<Scene<8, 4>> {
         let mut next = uniform(seed);
-        let mut out = Vec::new();
-        while out.len() < count {
-            let angle = next(-3.1, 3.1);
-            let camera = Camera {
-                position: Vec3::new(
-                    9.0 * libm::sinf(angle),
-                    next(-3.0, 3.0),
-                    9.0 * libm::cosf(angle),
-                ),
-                look_at: Vec3::new(0.0, 0.0, 0.0),
-                up: Vec3::new(0.0, 1.0, 0.0),
-                vfov_degrees: next(25.0, 60.0),
-            };
-            let Ok(mut scene) = Scene::new(camera, LinearRgb::new(next(0.0, 0.3), 0.1, 0.2)) else {
-                continue;
-            };
-            for _ in 0..(next(1.0, 6.99) as usize) {
-                let model = if next(0.0, 1.0) < 0.5 {
-                    Model::Phong
-                } else {
-                    Model::BlinnPhong
-                };
-                let sphere = Sphere {
-                    center: Vec3::new(next(-2.0, 2.0), next(-1.5, 1.5), next(-2.0, 2.0)),
-                    radius: next(0.3, 1.3),
-                    material: Material {
-                        albedo: LinearRgb::new(next(0.0, 1.0), next(0.0, 1.0), next(0.0, 1.0)),
-                        kd: next(0.2, 0.9),
-                        ks: next(0.0, 0.6),
-                        shininess: libm::powf(2.0, next(0.0, 11.0)),
-                        model,
-                    },
-                };
-                let _ = scene.add_sphere(sphere);
-            }
-            for _ in 0..(next(1.0, 3.99) as usize) {
-                let light = Light::Distant {
-                    direction: Vec3::new(next(-1.0, 1.0), next(-1.0, 0.2), next(-1.0, 1.0)),
-                    color: LinearRgb::new(1.0, next(0.7, 1.0), next(0.7, 1.0)),
-                    intensity: next(0.5, 2.0),
-                };
-                let _ = scene.add_light(light);
-            }
-            out.push(scene);
-        }
-        out
+        let draw = Draw {
+            half_extent: Vec3::new(2.0, 1.5, 2.0),
+            radius: (0.3, 1.3),
+            varied: true,
+        };
+        (0..count)
+            .map(|_| random_classic_scene(&mut next, &draw))
+            .collect()
     }
 
     fn frame<T: crate::Pixel + Default, W: FloatPath>(p: &Prepared<W, 8, 4>) -> Vec<T> {

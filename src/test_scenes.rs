@@ -1,0 +1,100 @@
+//! Random classic scenes for the crate's unit tests: the frames the narrow kernels take
+//! (Phong and Blinn-Phong spheres under distant lights, seen from a camera on a circle
+//! around them), drawn from one seeded generator so that every test that needs such
+//! frames draws them the same way.
+
+use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
+use crate::vec3::Vec3;
+use crate::LinearRgb;
+
+/// A xorshift generator of uniform `f32`s in `[lo, hi)`, from `seed`.
+pub(crate) fn uniform(seed: u64) -> impl FnMut(f32, f32) -> f32 {
+    let mut state = seed;
+    move |lo: f32, hi: f32| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+    }
+}
+
+/// How [`random_classic_scene`] draws a scene.
+pub(crate) struct Draw {
+    /// Each centre coordinate within `±` this.
+    pub half_extent: Vec3,
+    /// The radii's range.
+    pub radius: (f32, f32),
+    /// Random materials, light colours and intensities and background; otherwise grey
+    /// spheres (`kd` 0.8, `ks` 0.3) under white lights of intensity 1.
+    pub varied: bool,
+}
+
+/// One to six spheres with exponents `2⁰…2¹¹` under one to three distant lights, the
+/// camera 9 units from the origin, looking at it with a field of view of 25° to 60°.
+pub(crate) fn random_classic_scene<const S: usize, const L: usize>(
+    next: &mut impl FnMut(f32, f32) -> f32,
+    draw: &Draw,
+) -> Scene<S, L> {
+    let angle = next(-3.1, 3.1);
+    let camera = Camera {
+        position: Vec3::new(
+            9.0 * libm::sinf(angle),
+            next(-3.0, 3.0),
+            9.0 * libm::cosf(angle),
+        ),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: next(25.0, 60.0),
+    };
+    let red = if draw.varied { next(0.0, 0.3) } else { 0.1 };
+    let mut scene = Scene::new(camera, LinearRgb::new(red, 0.1, 0.2)).unwrap();
+    let e = draw.half_extent;
+    for _ in 0..(next(1.0, 6.99) as usize) {
+        let model = if next(0.0, 1.0) < 0.5 {
+            Model::Phong
+        } else {
+            Model::BlinnPhong
+        };
+        let center = Vec3::new(next(-e.x, e.x), next(-e.y, e.y), next(-e.z, e.z));
+        let radius = next(draw.radius.0, draw.radius.1);
+        let (albedo, kd, ks) = if draw.varied {
+            let albedo = LinearRgb::new(next(0.0, 1.0), next(0.0, 1.0), next(0.0, 1.0));
+            (albedo, next(0.2, 0.9), next(0.0, 0.6))
+        } else {
+            (LinearRgb::new(0.5, 0.5, 0.5), 0.8, 0.3)
+        };
+        let material = Material {
+            albedo,
+            kd,
+            ks,
+            shininess: libm::powf(2.0, next(0.0, 11.0)),
+            model,
+        };
+        scene
+            .add_sphere(Sphere {
+                center,
+                radius,
+                material,
+            })
+            .unwrap();
+    }
+    for _ in 0..(next(1.0, 3.99) as usize) {
+        let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, 0.2), next(-1.0, 1.0));
+        let (color, intensity) = if draw.varied {
+            (
+                LinearRgb::new(1.0, next(0.7, 1.0), next(0.7, 1.0)),
+                next(0.5, 2.0),
+            )
+        } else {
+            (LinearRgb::new(1.0, 1.0, 1.0), 1.0)
+        };
+        scene
+            .add_light(Light::Distant {
+                direction,
+                color,
+                intensity,
+            })
+            .unwrap();
+    }
+    scene
+}
