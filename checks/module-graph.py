@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The module graph of the core crate: which module of src/ uses which, read from the
-`crate::` and `super::` paths in its code (comments and unit tests left out; an item
+`crate::` and `super::` paths in its code (comments and unit tests left out, and files
+of unit-test code only, `#![cfg(test)]`; an item
 re-exported at the crate root counts as a use of its module). Prints the graph and exits
 with 1 if it has a cycle, between top-level modules or between files of one folder; if a
 module uses one of a later layer than its own (the layers of src/lib.rs's "Layout"); or if
@@ -25,6 +26,8 @@ for p in root.rglob('*.rs'):
     m = module_of(p)
     if m == 'lib': continue
     text = p.read_text()
+    # a file of unit-test code only (`#![cfg(test)]`) is left out like the unit tests
+    if re.search(r'^#!\[cfg\(test\)\]', text, re.M): continue
     # drop the unit tests and comments
     text = text.split('#[cfg(test)]')[0]
     code = '\n'.join(l.split('//')[0] for l in text.splitlines())

@@ -132,7 +132,6 @@ pub mod reference;
 pub mod render;
 mod runs;
 pub mod scene;
-#[cfg(test)]
 mod test_scenes;
 mod vec3;
 

@@ -3,6 +3,8 @@
 //! around them), drawn from one seeded generator so that every test that needs such
 //! frames draws them the same way.
 
+#![cfg(test)]
+
 use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
 use crate::vec3::Vec3;
 use crate::LinearRgb;

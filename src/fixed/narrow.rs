@@ -296,14 +296,14 @@ fn fast_cosines(dl: i64, (sigma, sigma2, nv): (i32, u32, i32), g: i64, g_shift: 
     (nl, ld)
 }
 
-/// `|L + V|²` (Q30) below which the fast Blinn-Phong `h` is not within [`H_ERROR`]: `9/16`.
+/// `|L + V|²` (Q30) below which the fast Blinn-Phong `h` is not within [`H_ERROR`](super::prepare::H_ERROR): `9/16`.
 /// Its error grows as `1/|L + V|` (the half vector of a light nearly behind the surface is
 /// ill-conditioned), and is within it from `|L + V| = ¾` on (test `fast_h_within_its_bound`).
 const BLINN_LEN2_MIN: u32 = 9 << 26;
 
 /// The fast `h = 1 − cos` (Q31, saturated: `h ≥ 1` is a lobe of 0) of Phong (`1 − R·V`) or
 /// Blinn-Phong (`1 − N·H`) from `N·L`, `N·V` and `L·D̂` (Q15), and whether it is within
-/// [`H_ERROR`]: not for Blinn-Phong where `|L + V|² < 9/16`, where the `h` given is 0 if the
+/// [`H_ERROR`](super::prepare::H_ERROR): not for Blinn-Phong where `|L + V|² < 9/16`, where the `h` given is 0 if the
 /// lobe can be anything but 0 (`N·H > 0`), so that the precise lobe decides.
 #[inline(always)]
 fn fast_h(blinn: bool, nl: i32, nv: i32, ld: i32) -> (u32, bool) {

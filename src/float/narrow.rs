@@ -15,7 +15,7 @@
 //!
 //! A frame takes it ([`Prepared`]'s `narrow`) when every light is distant and every sphere
 //! uses a classic model, the camera is outside every sphere, no sphere's highlight is too
-//! sharp for it (`ks·ΣI·n` within [`SHARPEST`]). Other frames take the general kernel.
+//! sharp for it (`ks·ΣI·n` within [`SHARPEST`](super::prepare::SHARPEST)). Other frames take the general kernel.
 //! The conditions are frame-wide, and each lane's result depends only on its own pixel
 //! (never on which candidates its packet has), so the scalar and SIMD paths stay
 //! bit-identical. With anti-aliasing on, the lanes an outline crosses are blended as the
@@ -50,7 +50,7 @@
 //!
 //! The cosines (`N·V`, `N·L`, the lobe's) are within `|ô|·`[`COS_ERROR`] of the exact ones
 //! (test `narrow_cosines_within_their_bound`): the error of an `f32` ray's hit, which the
-//! general kernel has too. Frames up to [`SHARPEST`] stay within a level of the general
+//! general kernel has too. Frames up to [`SHARPEST`](super::prepare::SHARPEST) stay within a level of the general
 //! kernel's in 8-bit colour (6 pixels of 410,400 a level apart on random frames) and
 //! within a tenth of a level of the `f64` reference in linear colour
 //! (`narrow_frames_agree_with_the_general_kernel`; `tests/reference_agreement.rs` and
@@ -66,7 +66,7 @@
 
 use super::kernel::{combine_with, meets, Packet};
 use super::lane::Lane;
-use super::prepare::{FloatPath, Prepared, PreparedLight};
+use super::prepare::{FloatPath, NarrowLight, Prepared, PreparedLight};
 use crate::brdf::Pow;
 use crate::real::Real;
 use crate::runs::Span;
@@ -80,52 +80,6 @@ use crate::vec3::Vec3;
 /// largest next to outlines, where `N·V` is small.
 #[cfg_attr(not(test), allow(dead_code))]
 pub(crate) const COS_ERROR: f32 = 1.0 / 262_144.0;
-
-/// The largest `ks·ΣI·n` (`ΣI` the sum of the lights' brightest channels) a frame may have
-/// for the narrow kernel, `2¹¹`. Sharper highlights go to the general kernel: a lobe
-/// `cos^n` moves by up to `n` times its cosine's error, and this cap keeps the frames
-/// `narrow_frames_agree_with_the_general_kernel` checks within a level of the general
-/// kernel's and a tenth of a level of the `f64` reference.
-pub(crate) const SHARPEST: f32 = 2048.0;
-
-/// A sphere's narrow constants.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NarrowSphere {
-    /// `ô = (eye − centre)/r`.
-    pub o: Vec3,
-    /// `ô × Sx`.
-    pub o_sx: Vec3,
-    /// The sphere's middle column as an offset `X₀` (half pixels): a pixel's quadrics are
-    /// evaluated at `X − X₀`.
-    pub origin: f32,
-    /// `r`, for the distance key.
-    pub radius: f32,
-    /// `1 − r²/(r + ε)²`: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
-    pub own_limit: f32,
-}
-
-/// A sphere's constants for one light: the caster filter (see the fixed path's
-/// `NarrowLight`), in `N·L` and `(N·L)²`.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct NarrowLight {
-    /// The spheres that can shadow the sphere from this light.
-    pub casters: u32,
-    /// `N·L` at or above this: no caster is ahead.
-    pub ahead: f32,
-    /// `(N·L)²` above this: no caster is within reach.
-    pub reach: f32,
-}
-
-/// The frame's narrow constants: the directions' steps and each light's `L × Sx`.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct NarrowView<const L: usize> {
-    /// Half a pixel right and up on the image plane at distance 1: `Sx`, `Sy`.
-    pub sx: Vec3,
-    pub sy: Vec3,
-    /// Per light: `L` and `L × Sx`.
-    pub to_light: [Vec3; L],
-    pub l_sx: [Vec3; L],
-}
 
 /// One sphere's quadrics along a row: `E′ = e₀ + e₁·x + e₂·x²`, `b = b₀ + b₁·x`, and per
 /// light `G = g₀ + g₁·x + g₂·x²`, for `x = X − X₀`.

@@ -14,7 +14,6 @@
 //! ([`Row`]) that the spans and the kernel's `ray` stage share.
 
 use super::lane::{Lane, Rooted, SquareRoot};
-use super::narrow::{NarrowLight, NarrowSphere, NarrowView, SHARPEST};
 use crate::brdf::Params;
 use crate::pixel::LinearRgb;
 use crate::render::{RenderError, MAX_DIMENSION};
@@ -166,6 +165,52 @@ pub(crate) enum PreparedLight {
         power: Vec3,
         radius: f32,
     },
+}
+
+/// The largest `ks·ΣI·n` (`ΣI` the sum of the lights' brightest channels) a frame may have
+/// for the narrow kernel, `2¹¹`. Sharper highlights go to the general kernel: a lobe
+/// `cos^n` moves by up to `n` times its cosine's error, and this cap keeps the frames
+/// `narrow_frames_agree_with_the_general_kernel` checks within a level of the general
+/// kernel's and a tenth of a level of the `f64` reference.
+pub(crate) const SHARPEST: f32 = 2048.0;
+
+/// A sphere's constants for the narrow kernel (`super::narrow`).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NarrowSphere {
+    /// `ô = (eye − centre)/r`.
+    pub o: Vec3,
+    /// `ô × Sx`.
+    pub o_sx: Vec3,
+    /// The sphere's middle column as an offset `X₀` (half pixels): a pixel's quadrics are
+    /// evaluated at `X − X₀`.
+    pub origin: f32,
+    /// `r`, for the distance key.
+    pub radius: f32,
+    /// `1 − r²/(r + ε)²`: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
+    pub own_limit: f32,
+}
+
+/// A sphere's constants for one light: the caster filter (see the fixed path's
+/// `NarrowLight`), in `N·L` and `(N·L)²`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NarrowLight {
+    /// The spheres that can shadow the sphere from this light.
+    pub casters: u32,
+    /// `N·L` at or above this: no caster is ahead.
+    pub ahead: f32,
+    /// `(N·L)²` above this: no caster is within reach.
+    pub reach: f32,
+}
+
+/// The frame's narrow constants: the directions' steps and each light's `L × Sx`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct NarrowView<const L: usize> {
+    /// Half a pixel right and up on the image plane at distance 1: `Sx`, `Sy`.
+    pub sx: Vec3,
+    pub sy: Vec3,
+    /// Per light: `L` and `L × Sx`.
+    pub to_light: [Vec3; L],
+    pub l_sx: [Vec3; L],
 }
 
 /// A scene prepared for rendering at one size on one float path (`W`).
