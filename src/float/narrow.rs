@@ -207,6 +207,19 @@ fn own<T: Lane>(candidates: &[u16], id: T, mut value: impl FnMut(usize) -> T) ->
 }
 
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    /// The packet's pixels `x0, x0 + 1, …` as offsets `X = 2x + 1 − w` from the image
+    /// centre in half pixels: exact in `f32`.
+    #[inline(always)]
+    fn narrow_columns(&self, x0: u32) -> W::Lane {
+        W::Lane::ramp(x0 as f32) * W::Lane::splat(2.0) + W::Lane::splat(1.0 - self.width_f)
+    }
+
+    /// Row `j` as its offset `Y = h − 2j − 1` from the image centre in half pixels.
+    #[inline(always)]
+    fn narrow_row_offset(&self, j: u32) -> f32 {
+        (self.height as f32 - 2.0 * j as f32) - 1.0
+    }
+
     /// The narrow constants of row `j` for the spheres with a span on it.
     #[inline(never)]
     pub(crate) fn narrow_row(&self, row: &mut NarrowRow<S, L>, j: u32, spans: &[Option<Span>]) {
@@ -215,7 +228,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let Some(view) = self.narrow.as_ref() else {
             return;
         };
-        let y = (self.height as f32 - 2.0 * j as f32) - 1.0;
+        let y = self.narrow_row_offset(j);
         // D at X = 0 on this row.
         let base = self.forward + view.sy.scale(y);
         row.a = [
@@ -304,8 +317,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             sphere: W::Lane::splat(-1.0),
             shadowed: [0; 8],
         };
-        // X = 2x + 1 − w, exact.
-        let x = W::Lane::ramp(x0 as f32) * W::Lane::splat(2.0) + W::Lane::splat(1.0 - self.width_f);
+        let x = self.narrow_columns(x0);
         let xl = x - W::Lane::splat(single.origin);
         let rs = single.row;
         let e = horner(rs.e, xl);
@@ -355,8 +367,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             sphere: W::Lane::splat(-1.0),
             shadowed: [0; 8],
         };
-        // X = 2x + 1 − w, exact.
-        let x = W::Lane::ramp(x0 as f32) * W::Lane::splat(2.0) + W::Lane::splat(1.0 - self.width_f);
+        let x = self.narrow_columns(x0);
 
         // `hit`: the nearest sphere with E′ ≥ 0 in front, by r·(−b − √E′).
         let mut key = W::Lane::splat(f32::MAX);
@@ -456,7 +467,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         if !self.antialias {
             return packet;
         }
-        let x = W::Lane::ramp(x0 as f32) * W::Lane::splat(2.0) + W::Lane::splat(1.0 - self.width_f);
+        let x = self.narrow_columns(x0);
         let hit = W::Lane::splat(0.0).le(packet.sphere);
         let t = W::Lane::select(
             hit,
@@ -614,7 +625,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let Some(view) = self.narrow.as_ref() else {
             return Vec3::splat(Vec3::default());
         };
-        let y = (self.height as f32 - 2.0 * j as f32) - 1.0;
+        let y = self.narrow_row_offset(j);
         let base = Vec3::splat(self.forward + view.sy.scale(y));
         let d = base + Vec3::splat(view.sx) * x;
         let comp = |f: fn(&Vec3) -> f32| {

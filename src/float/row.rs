@@ -64,10 +64,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         let runs = merge_runs::<S>(&spans);
         let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
         let run = (x as usize, y, encoding, &background);
-        // Two kernels on the scalar paths: frames without a normalized material get one that
-        // holds only the classic models' code (see the kernel's module docs). The SIMD paths
-        // keep one kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
-        // Frames the narrow kernel takes (see `narrow`) go there.
+        // Frames the narrow kernel takes (see `narrow`) go there. Of the others, on the
+        // scalar paths, frames without a normalized material get a general kernel that holds
+        // only the classic models' code (see the kernel's module docs). The SIMD paths keep
+        // one general kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
         if self.narrow.is_some() {
             self.shade_narrow_runs::<P>(out, run, &row, &spans, &runs);
         } else if W::Lane::LANES > 1 || self.normalized {
