@@ -74,12 +74,18 @@ impl<T: Real> Vec3<T> {
 }
 
 impl Vec3<f32> {
-    /// The largest absolute component (the ∞-norm).
+    /// The largest absolute component (the ∞-norm); NaN if a component is NaN.
+    ///
+    /// Compared as integers: with the sign bit cleared, the bits of non-negative `f32`s (NaN
+    /// above infinity) are ordered as their values. Three masks and two integer
+    /// comparisons, where `f32::max` is a soft-float call on cores without an FPU.
     pub fn max_abs(self) -> f32 {
-        let a = if self.x < 0.0 { -self.x } else { self.x };
-        let b = if self.y < 0.0 { -self.y } else { self.y };
-        let c = if self.z < 0.0 { -self.z } else { self.z };
-        a.max(b).max(c)
+        let magnitude = |c: f32| c.to_bits() & 0x7fff_ffff;
+        f32::from_bits(
+            magnitude(self.x)
+                .max(magnitude(self.y))
+                .max(magnitude(self.z)),
+        )
     }
     /// True if every component is finite.
     pub fn is_finite(self) -> bool {
@@ -143,5 +149,37 @@ impl<T: Real> Mul<T> for Vec3<T> {
 impl From<[f32; 3]> for Vec3<f32> {
     fn from(a: [f32; 3]) -> Self {
         Vec3::new(a[0], a[1], a[2])
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::Vec3;
+
+    #[test]
+    fn max_abs_is_the_largest_magnitude() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0e-45,
+            -1.0e-40,
+            0.5,
+            -0.75,
+            3.0,
+            -1.0e30,
+            f32::MAX,
+            f32::INFINITY,
+            f32::NEG_INFINITY,
+        ];
+        for &x in &values {
+            for &y in &values {
+                for &z in &values {
+                    let expected = x.abs().max(y.abs()).max(z.abs());
+                    let got = Vec3::new(x, y, z).max_abs();
+                    assert_eq!(got.to_bits(), expected.to_bits(), "{x} {y} {z}");
+                }
+            }
+        }
+        assert!(Vec3::new(1.0, f32::NAN, 2.0).max_abs().is_nan());
     }
 }
