@@ -9,6 +9,15 @@
 //! to `__aeabi_lmul` (a full 64×64 product, about 40 instructions with the call); here it is
 //! four 16×16→32 `MULS` and the carries between them, inline: about 20 instructions.
 //!
+//! Inline, those sequences repeat in flash at every product, and most products are in code
+//! that runs a few times a frame (the prepare, the precise lobe, the full-width kernel). So on
+//! ARMv6-M there are two forms of each: [`mul_uu`], [`mul_ii`], [`mul_iu`] and
+//! [`leading_zeros`] are one shared out-of-line routine each (about ten instructions more a
+//! call, one copy in flash), and [`inline`]'s are the inline sequences, for the narrow kernel's
+//! per-pixel and per-run stages. In the M0 firmware the shared routines take 2,506 bytes off
+//! shadeline's code for 0.36% more instructions a frame. Elsewhere both forms are the same
+//! plain products.
+//!
 //! Both forms are exact, so a frame is the same bits on every target
 //! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
 //!
@@ -21,7 +30,7 @@
 pub(crate) fn leading_zeros(x: u64) -> u32 {
     #[cfg(shadeline_short_mul)]
     {
-        search_leading_zeros(x)
+        shared::leading_zeros(x)
     }
     #[cfg(not(shadeline_short_mul))]
     {
@@ -73,7 +82,7 @@ pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
 pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
     #[cfg(shadeline_short_mul)]
     {
-        split_uu(a, b)
+        shared::mul_uu(a, b)
     }
     #[cfg(not(shadeline_short_mul))]
     {
@@ -86,7 +95,7 @@ pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
 pub(crate) fn mul_ii(a: i32, b: i32) -> i64 {
     #[cfg(shadeline_short_mul)]
     {
-        split_ii(a, b)
+        shared::mul_ii(a, b)
     }
     #[cfg(not(shadeline_short_mul))]
     {
@@ -99,7 +108,7 @@ pub(crate) fn mul_ii(a: i32, b: i32) -> i64 {
 pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
     #[cfg(shadeline_short_mul)]
     {
-        split_iu(a, b)
+        shared::mul_iu(a, b)
     }
     #[cfg(not(shadeline_short_mul))]
     {
@@ -114,7 +123,74 @@ pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
 #[inline(always)]
 pub(crate) fn mul_wide(a: i64, b: i32) -> i64 {
     let high = ((a >> 32) as i32).wrapping_mul(b);
-    ((high as i64) << 32).wrapping_add(mul_iu(b, a as u32))
+    ((high as i64) << 32).wrapping_add(inline::mul_iu(b, a as u32))
+}
+
+/// The inline forms of the products, for the narrow kernel's per-pixel and per-run stages:
+/// the split sequences written out at each call on ARMv6-M, the plain products elsewhere.
+pub(crate) mod inline {
+    /// `a·b`, exact.
+    #[inline(always)]
+    pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
+        #[cfg(shadeline_short_mul)]
+        {
+            super::split_uu(a, b)
+        }
+        #[cfg(not(shadeline_short_mul))]
+        {
+            a as u64 * b as u64
+        }
+    }
+
+    /// `a·b`, exact.
+    #[inline(always)]
+    pub(crate) fn mul_ii(a: i32, b: i32) -> i64 {
+        #[cfg(shadeline_short_mul)]
+        {
+            super::split_ii(a, b)
+        }
+        #[cfg(not(shadeline_short_mul))]
+        {
+            a as i64 * b as i64
+        }
+    }
+
+    /// `a·b`, exact (`|a·b| < 2⁶³`).
+    #[inline(always)]
+    pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
+        #[cfg(shadeline_short_mul)]
+        {
+            super::split_iu(a, b)
+        }
+        #[cfg(not(shadeline_short_mul))]
+        {
+            a as i64 * b as i64
+        }
+    }
+}
+
+/// The shared out-of-line routines behind the default forms on ARMv6-M.
+#[cfg(shadeline_short_mul)]
+mod shared {
+    #[inline(never)]
+    pub(super) fn leading_zeros(x: u64) -> u32 {
+        super::search_leading_zeros(x)
+    }
+
+    #[inline(never)]
+    pub(super) fn mul_uu(a: u32, b: u32) -> u64 {
+        super::split_uu(a, b)
+    }
+
+    #[inline(never)]
+    pub(super) fn mul_ii(a: i32, b: i32) -> i64 {
+        super::split_ii(a, b)
+    }
+
+    #[inline(never)]
+    pub(super) fn mul_iu(a: i32, b: u32) -> i64 {
+        super::split_iu(a, b)
+    }
 }
 
 /// `a·b` from four 16×16→32 products: `a = aₕ·2¹⁶ + aₗ`, likewise `b`.

@@ -89,7 +89,7 @@
 
 use super::exact::{shift_saturating, Exact};
 use super::kernel::{half_vector, lobe_h, Shaded};
-use super::mul::{mul_ii, mul_iu, mul_uu};
+use super::mul::inline::{mul_ii, mul_uu};
 use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
 use super::prepare::{
     FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, Quadric, Step,
@@ -738,6 +738,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(FixedLight::Distant { to_light, .. }) = self.lights.get(light) else {
             return 0;
         };
+        // Products by the shared routines: this runs for a few pixels a frame.
+        use super::mul::{mul_ii, mul_iu, mul_uu};
         let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
         let Some((ya, sa)) = inv_sqrt(a) else {
             return 0;

@@ -11,7 +11,7 @@
 #[cfg(feature = "full-width")]
 use super::kernel::{ray, Shaded};
 #[cfg(feature = "full-width")]
-use super::mul::{mul_ii, mul_iu};
+use super::mul::inline::{mul_ii, mul_iu};
 use super::narrow::{Narrow, NarrowRun};
 use super::prepare::PreparedFixed;
 #[cfg(feature = "full-width")]
