@@ -113,6 +113,7 @@
 //! `vector` (dot products and normalization) · `mul` (exact 32×32→64 products, leading
 //! zeros) · `exact` (`f32` as mantissa and exponent).
 
+mod convert;
 mod exact;
 mod kernel;
 mod mul;

@@ -2,8 +2,8 @@
 //!
 //! This is the only place the fixed path touches floating point: `f32` arithmetic (IEEE
 //! `+ − × ÷`, exact power-of-two scaling), `libm`'s `sqrtf`/`floorf`/`ceilf` and the
-//! tangent of [`tan_half_degrees`], the same operations on every target, followed by the
-//! `fixed` crate's exact `from_num` conversions. So the prepared numbers, and with them every pixel, are the same bits on a
+//! tangent of [`tan_half_degrees`], the same operations on every target, followed by exact
+//! conversions to fixed bits ([`super::convert`]). So the prepared numbers, and with them every pixel, are the same bits on a
 //! host, a Cortex-M0 and a RISC-V core.
 //!
 //! What it does, in order: check the size and the camera's plane scale; pick the scene's
@@ -11,6 +11,7 @@
 //! [`RenderError::OutOfFixedRange`] naming the item and field); compute each sphere's screen
 //! rectangle ([`super::spans`]).
 
+use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
 use super::mul::{mul_ii, mul_uu, mul_wide};
 use super::roots::inv_sqrt;
@@ -449,7 +450,7 @@ fn out_of_range(item: Item, field: &'static str) -> RenderError {
 }
 
 fn to_len(v: Vec3, scale: f32, item: Item, field: &'static str) -> Result<V3<Len>, RenderError> {
-    let c = [v.x, v.y, v.z].map(|c| Len::checked_from_num(c * scale));
+    let c = [v.x, v.y, v.z].map(|c| fixed_bits_i32(c * scale, 16).map(Len::from_bits));
     match c {
         [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
         _ => Err(out_of_range(item, field)),
@@ -457,7 +458,7 @@ fn to_len(v: Vec3, scale: f32, item: Item, field: &'static str) -> Result<V3<Len
 }
 
 fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
-    let c = [v.x, v.y, v.z].map(|c| I16F48::checked_from_num(c * scale));
+    let c = [v.x, v.y, v.z].map(|c| fixed_bits(c * scale, 48).map(I16F48::from_bits));
     match c {
         [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
         _ => Err(out_of_range(Item::Camera, "vfov")),
@@ -471,7 +472,9 @@ fn to_levels(c: [f32; 3], item: Item, field: &'static str) -> Result<V3<U16F16>,
         if !(0.0..=MAX_LEVEL).contains(&v) {
             return Err(out_of_range(item, field));
         }
-        *o = U16F16::checked_from_num(v).ok_or(out_of_range(item, field))?;
+        *o = fixed_bits_u32(v, 16)
+            .map(U16F16::from_bits)
+            .ok_or(out_of_range(item, field))?;
     }
     Ok(out)
 }
@@ -642,7 +645,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let k = scale_log2(scene);
         let scale = pow2(k);
         let eye = to_len(camera.position, scale, Item::Camera, "position")?;
-        let epsilon = Len::checked_from_num(scene.ray_epsilon() * scale)
+        let epsilon = fixed_bits_i32(scene.ray_epsilon() * scale, 16)
+            .map(Len::from_bits)
             .ok_or(out_of_range(Item::Camera, "position"))?;
         let view = View {
             eye: camera.position,
@@ -658,7 +662,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let item = Item::Sphere(i);
             let m = &s.material;
             let center = to_len(s.center, scale, item, "center")?;
-            let radius = Len::checked_from_num(s.radius * scale)
+            let radius = fixed_bits_i32(s.radius * scale, 16)
+                .map(Len::from_bits)
                 .filter(|r| *r >= MIN_SCALED_RADIUS)
                 .ok_or(out_of_range(item, "radius"))?;
             let radius_raw = radius.to_bits() as i64;
@@ -727,7 +732,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     // every other input, with no panic path for the firmware's link proof.
                     let d = [d.x, d.y, d.z].map(|c| {
                         let saturated = if c < 0.0 { Unit::MIN } else { Unit::MAX };
-                        Unit::checked_from_num(c).unwrap_or(saturated).to_bits() as i64
+                        fixed_bits_i32(c, 30)
+                            .map_or(saturated, Unit::from_bits)
+                            .to_bits() as i64
                     });
                     FixedLight::Distant {
                         to_light: normalize(d).ok_or(out_of_range(item, "direction"))?,
@@ -786,7 +793,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // Saturating, like `saturating_from_num`, but without its panic on NaN.
         self.background = [bg.r, bg.g, bg.b].map(|c| {
             let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
-            U16F16::checked_from_num(c).unwrap_or(saturated).to_bits()
+            fixed_bits_u32(c, 16)
+                .map_or(saturated, U16F16::from_bits)
+                .to_bits()
         });
         Ok(())
     }
@@ -883,7 +892,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             .map(|l| match l {
                 FixedLight::Distant { arriving, .. } => arriving
                     .iter()
-                    .map(|c| c.to_num::<f32>())
+                    .map(|c| to_f32(c.to_bits() as i64, 16))
                     .fold(0.0, f32::max),
                 FixedLight::Point { .. } => 0.0,
             })
@@ -974,7 +983,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         let bits = 64 - r.leading_zeros();
         let (rf, ef) = (r as f32, eps as f32);
-        let ks_intensity = ks.to_num::<f32>() * intensity;
+        let ks_intensity = to_f32(ks.to_bits() as i64, 16) * intensity;
         let cutoff = lobe_cutoff(ks_intensity, n);
         // The fast lobe's error, in levels of the brightest channel: its slope
         // n·(1 − h)^(n − 1) times h's error, and the narrow `pow`'s own (module `narrow`).
@@ -1050,19 +1059,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             .and_then(|c| c.get(light))
             .copied()
             .unwrap_or(u32::MAX);
-        let l = to_light.map(|c| c.to_num::<f32>());
-        let lift = libm::sqrtf(own.radius_sq.to_num::<f32>()) + self.epsilon.to_num::<f32>();
+        let l = to_light.map(|c| to_f32(c.to_bits() as i64, 30));
+        let lift = libm::sqrtf(to_f32(own.radius_sq.to_bits(), 32))
+            + to_f32(self.epsilon.to_bits() as i64, 16);
         let (mut ahead, mut reach) = (f32::NEG_INFINITY, f32::NEG_INFINITY);
         for (k, c) in self.spheres.iter().enumerate() {
             if k == i || (k < 32 && mask & (1 << k) == 0) {
                 continue;
             }
-            let delta = each3(|j| (own.center[j] - c.center[j]).to_num::<f32>());
+            let delta = each3(|j| to_f32((own.center[j] - c.center[j]).to_bits() as i64, 16));
             let along = delta[0] * l[0] + delta[1] * l[1] + delta[2] * l[2];
             let across = each3(|j| delta[j] - along * l[j]);
             let across =
                 libm::sqrtf(across[0] * across[0] + across[1] * across[1] + across[2] * across[2]);
-            let gap = across - libm::sqrtf(c.radius_sq.to_num::<f32>());
+            let gap = across - libm::sqrtf(to_f32(c.radius_sq.to_bits(), 32));
             ahead = ahead.max(-along / lift);
             reach = reach.max(if gap <= 0.0 {
                 1.0
