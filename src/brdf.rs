@@ -428,20 +428,17 @@ impl<T: Real> Params<T> {
 }
 
 impl<T: ScalarReal> Params<T> {
-    /// The constants of `m`: normalization factors, `F₀`, and the diffuse scale, computed
-    /// once (in prepare, or in `f64` by the tests).
-    ///
-    /// Without the feature `models` this computes nothing for Oren–Nayar and GGX: it gives
-    /// such a material the classic constants of its `kd`, `albedo`, `ks` and `shininess`. No
-    /// path ever renders them, because no [`Scene`](crate::Scene) holds such a material (it
-    /// refuses it with [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
-    pub fn of(m: &Material) -> Self {
+    /// The classic models' constants of `m` (Phong and Blinn-Phong): `kd·albedo`, `ks`, `n`
+    /// and whether the lobe is Blinn-Phong's, every other term neutral. [`Self::of`] gives
+    /// these for a classic material; alone, it is what the fixed path's narrow kernel needs,
+    /// without the normalization factors' code.
+    pub fn classic(m: &Material) -> Self {
         let s = T::splat;
         let (zero, one) = (s(0.0), s(1.0));
         let a = m.albedo;
         let kd = s(m.kd);
         let kd_albedo = Vec3::new(s(a.r) * kd, s(a.g) * kd, s(a.b) * kd);
-        let classic = Params {
+        Params {
             kd_albedo,
             ks: s(m.ks),
             shininess: s(m.shininess),
@@ -466,7 +463,21 @@ impl<T: ScalarReal> Params<T> {
             ggx: zero,
             #[cfg(feature = "models")]
             alpha2: one,
-        };
+        }
+    }
+
+    /// The constants of `m`: normalization factors, `F₀`, and the diffuse scale, computed
+    /// once (in prepare, or in `f64` by the tests).
+    ///
+    /// Without the feature `models` this computes nothing for Oren–Nayar and GGX: it gives
+    /// such a material the classic constants of its `kd`, `albedo`, `ks` and `shininess`. No
+    /// path ever renders them, because no [`Scene`](crate::Scene) holds such a material (it
+    /// refuses it with [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
+    pub fn of(m: &Material) -> Self {
+        let s = T::splat;
+        let (zero, one) = (s(0.0), s(1.0));
+        let classic = Self::classic(m);
+        let kd_albedo = classic.kd_albedo;
         let diffuse = kd_albedo.scale(one / T::pi());
         let lambert = Params {
             kd_albedo: diffuse,

@@ -19,6 +19,8 @@ use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
 use crate::brdf::{Params, LOBES};
 use crate::render::RenderError;
+#[cfg(not(feature = "full-width"))]
+use crate::scene::Model;
 use crate::scene::{Item, Light, Scene, MORE_LOBES};
 use crate::vec3::Vec3;
 use crate::MAX_DIMENSION;
@@ -672,7 +674,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             to_levels([m.albedo.r, m.albedo.g, m.albedo.b], item, "albedo")?;
             // The float paths' constants (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1 for the
             // normalized models; normalization factors; F₀), converted to fixed formats.
+            // Without the full-width kernel only the classic models render: the others are
+            // refused here, before their constants are computed (and their code is linked).
+            #[cfg(feature = "full-width")]
             let params = Params::<f32>::of(m);
+            #[cfg(not(feature = "full-width"))]
+            let params = match m.model {
+                Model::Phong | Model::BlinnPhong => Params::<f32>::classic(m),
+                _ => {
+                    return Err(RenderError::NeedsFullWidth {
+                        item,
+                        field: "model",
+                    })
+                }
+            };
             let kd_albedo = params.kd_albedo;
             let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
             let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
@@ -745,6 +760,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                         )?,
                     }
                 }
+                #[cfg(not(feature = "full-width"))]
+                Light::Point { .. } => {
+                    return Err(RenderError::NeedsFullWidth {
+                        item,
+                        field: "type",
+                    })
+                }
+                #[cfg(feature = "full-width")]
                 Light::Point {
                     position,
                     color,
