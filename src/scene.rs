@@ -1040,7 +1040,15 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     /// small enough not to lift contact shadows visibly. Every path and the f64 reference
     /// use this same number.
     pub fn ray_epsilon(&self) -> f32 {
-        let mut extent = self.camera.position.max_abs().max(1.0);
+        1.0e-4 * self.extent().max(1.0)
+    }
+
+    /// The largest coordinate magnitude in the scene: camera, sphere centre plus radius,
+    /// point light. [`Self::ray_epsilon`] and the fixed path's scale both start from it; one
+    /// copy, out of line, for a firmware's flash.
+    #[inline(never)]
+    pub(crate) fn extent(&self) -> f32 {
+        let mut extent = self.camera.position.max_abs();
         for s in &self.spheres {
             extent = extent.max(s.center.max_abs() + s.radius);
         }
@@ -1049,6 +1057,6 @@ impl<const S: usize, const L: usize> Scene<S, L> {
                 extent = extent.max(position.max_abs());
             }
         }
-        1.0e-4 * extent
+        extent
     }
 }

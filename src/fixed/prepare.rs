@@ -467,7 +467,9 @@ fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
     }
 }
 
-/// Per-channel levels checked against [`MAX_LEVEL`].
+/// Per-channel levels checked against [`MAX_LEVEL`]. Out of line: the prepare converts four
+/// colours.
+#[inline(never)]
 fn to_levels(c: [f32; 3], item: Item, field: &'static str) -> Result<V3<U16F16>, RenderError> {
     let mut out = [U16F16::ZERO; 3];
     for (o, v) in out.iter_mut().zip(c) {
@@ -525,15 +527,7 @@ fn pow2(k: i32) -> f32 {
 /// The power of two `k` such that the scene's extent times `2^k` is below `2^EXTENT_LOG2`
 /// units, as large as possible up to [`MAX_SCALE_LOG2`].
 fn scale_log2<const S: usize, const L: usize>(scene: &Scene<S, L>) -> i32 {
-    let mut extent = scene.camera().position.max_abs();
-    for s in scene.spheres() {
-        extent = extent.max(s.center.max_abs() + s.radius);
-    }
-    for l in scene.lights() {
-        if let Light::Point { position, .. } = l {
-            extent = extent.max(position.max_abs());
-        }
-    }
+    let extent = scene.extent();
     // extent = f·2^e with f in [½, 1): extent·2^(EXTENT_LOG2 − e) < 2^EXTENT_LOG2.
     let (_, e) = libm::frexpf(extent);
     (EXTENT_LOG2 - e).min(MAX_SCALE_LOG2)
