@@ -103,8 +103,9 @@ impl Quadric {
     }
 }
 
-/// `a·b` of two `i64`, exact: four 32×32→64 products ([`mul_uu`], inline `MULS` on
-/// ARMv6-M), not a call to the 128×128 multiplication routine.
+/// `a·b` of two `i64`, exact: four 32×32→64 products ([`mul_u128`]), not a call to the
+/// 128×128 multiplication routine. Out of line, like [`mul_u128`].
+#[inline(never)]
 fn mul_128(a: i64, b: i64) -> i128 {
     let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
     if (a < 0) != (b < 0) {
