@@ -97,7 +97,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// directly); `false` (nothing written) if the frame does not use the narrow kernel. Not
     /// inlined, so the pixel loop is compiled apart from the row's set-up.
     #[inline(never)]
-    fn narrow_pixels<P: Pixel>(
+    fn narrow_pixels<P: Pixel, const PLAIN: bool>(
         &self,
         row: (u32, &[Option<Span>], Encoding, &Background<P>),
         start: u32,
@@ -110,7 +110,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return false;
         }
         let narrow = &mut narrow;
-        let plain = encoding.is_default();
         let finish = |px: &mut P, shaded: Narrow, column: u32| {
             let shaded = match shaded {
                 Narrow::Done(shaded) => shaded,
@@ -125,7 +124,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 Narrow::Precise => None,
             };
             *px = match shaded {
-                Some(s) => encode(s.color, s.hit, (encoding, plain), column, y),
+                Some(s) => encode::<P, PLAIN>(s.color, s.hit, encoding, column, y),
                 None => background.at(column as usize),
             };
         };
@@ -206,6 +205,11 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         coverage_of(&self.row_spans(y))
     }
 
+    /// A dispatch, inlined into the caller: the default encoding (what
+    /// [`render_line`](Render::render_line) passes, unless the frame is wrapped by
+    /// [`with_encoding`](Render::with_encoding)) has a row function of its own, so a firmware
+    /// that never picks another encoding links none of their code, nor the 8 KiB sRGB table.
+    #[inline(always)]
     fn render_segment_with<P: Pixel>(
         &self,
         y: u32,
@@ -214,25 +218,38 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
         encoding: Encoding,
     ) -> Result<(), RenderError> {
         check_segment(y, x, out.len(), self.width, self.height)?;
+        if encoding.is_default() {
+            self.render_segment_encoded::<P, true>(y, x, out, encoding);
+        } else {
+            self.render_segment_encoded::<P, false>(y, x, out, encoding);
+        }
+        Ok(())
+    }
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// The body of [`Render::render_segment_with`] on a checked segment; `PLAIN`: whether
+    /// `encoding` is the default.
+    #[inline(never)]
+    fn render_segment_encoded<P: Pixel, const PLAIN: bool>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) {
         let mut spans = heapless::Vec::new();
         self.row_spans_into(y, &mut spans);
         let mut runs = heapless::Vec::<Span, S>::new();
         merge_runs_into(&spans, &mut runs);
-        let plain = encoding.is_default();
         let background = Background::new(encoding, |x| {
-            encode(
-                self.background,
-                HitRecord::default(),
-                (encoding, plain),
-                x,
-                y,
-            )
+            encode::<P, PLAIN>(self.background, HitRecord::default(), encoding, x, y)
         });
         #[cfg(feature = "full-width")]
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             let row = (y, &spans[..], encoding, &background);
-            if self.narrow_pixels(row, start as u32, run_pixels) {
+            if self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels) {
                 return;
             }
             // Without the full-width kernel every prepared frame is a narrow one.
@@ -246,7 +263,7 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
             for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
                 let shaded = self.shade_ray(dir, column, &spans, P::NEEDS_HITS);
                 *px = match shaded {
-                    Some(s) => encode(s.color, s.hit, (encoding, plain), column, y),
+                    Some(s) => encode::<P, PLAIN>(s.color, s.hit, encoding, column, y),
                     None => background.at(column as usize),
                 };
                 for (c, a) in dir.iter_mut().zip(advance) {
@@ -254,22 +271,22 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
                 }
             }
         });
-        Ok(())
     }
 }
 
 /// The encode stage of the fixed path: [`Pixel::encode_fixed`] for the default encoding
-/// (`plain`: whether `encoding` is it, decided once per row), the encoding's integer rule on
+/// (`PLAIN`: whether `encoding` is it, a constant of the row function's instantiation, so
+/// that the default's never holds the other encodings' code), the encoding's integer rule on
 /// the linear codes `min(v, 65536)` otherwise.
 #[inline(always)]
-fn encode<P: Pixel>(
+fn encode<P: Pixel, const PLAIN: bool>(
     color: [u32; 3],
     hit: HitRecord,
-    (encoding, plain): (Encoding, bool),
+    encoding: Encoding,
     x: u32,
     y: u32,
 ) -> P {
-    if !plain {
+    if !PLAIN {
         if let Some(px) = pixel_from_codes(color.map(linear_code_fixed), encoding, x, y) {
             return px;
         }

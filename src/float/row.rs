@@ -23,8 +23,14 @@ use crate::render::{check_segment, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
 
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
-    fn background_pixel<P: Pixel>(&self, encoding: Encoding, x: u32, y: u32) -> P {
-        if !encoding.is_default() {
+    /// The background at `(x, y)`; `PLAIN` as in [`store_packet`].
+    fn background_pixel<P: Pixel, const PLAIN: bool>(
+        &self,
+        encoding: Encoding,
+        x: u32,
+        y: u32,
+    ) -> P {
+        if !PLAIN && !encoding.is_default() {
             let c = self.background;
             let codes = [linear_code(c.r), linear_code(c.g), linear_code(c.b)];
             if let Some(px) = pixel_from_codes(codes, encoding, x, y) {
@@ -51,6 +57,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         coverage_of(&self.row_spans(y))
     }
 
+    /// A dispatch, inlined into the caller: the default encoding (what
+    /// [`render_line`](Render::render_line) passes, unless the frame is wrapped by
+    /// [`with_encoding`](Render::with_encoding)) has a row function of its own, so a
+    /// firmware that never picks another encoding links none of their code, nor the 8 KiB
+    /// sRGB table.
+    #[inline(always)]
     fn render_segment_with<P: Pixel>(
         &self,
         y: u32,
@@ -59,23 +71,45 @@ impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> 
         encoding: Encoding,
     ) -> Result<(), RenderError> {
         check_segment(y, x, out.len(), self.width, self.height)?;
+        if encoding.is_default() {
+            self.render_segment_encoded::<P, true>(y, x, out, encoding);
+        } else {
+            self.render_segment_encoded::<P, false>(y, x, out, encoding);
+        }
+        Ok(())
+    }
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
+    /// The body of [`Render::render_segment_with`] on a checked segment. `PLAIN`: `encoding`
+    /// is the default, a constant of the instantiation down to every store, so that the
+    /// default's row function holds none of the other encodings' code.
+    #[inline(never)]
+    fn render_segment_encoded<P: Pixel, const PLAIN: bool>(
+        &self,
+        y: u32,
+        x: u32,
+        out: &mut [P],
+        encoding: Encoding,
+    ) {
         let row = self.row(y);
         let spans = self.row_spans(y);
         let runs = merge_runs::<S>(&spans);
-        let background = Background::new(encoding, |x| self.background_pixel::<P>(encoding, x, y));
+        let background = Background::new(encoding, |x| {
+            self.background_pixel::<P, PLAIN>(encoding, x, y)
+        });
         let run = (x as usize, y, encoding, &background);
         // Frames the narrow kernel takes (see `narrow`) go there. Of the others, on the
         // scalar paths, frames without a normalized material get a general kernel that holds
         // only the classic models' code (see the kernel's module docs). The SIMD paths keep
         // one general kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
         if self.narrow.is_some() {
-            self.shade_narrow_runs::<P>(out, run, &row, &spans, &runs);
+            self.shade_narrow_runs::<P, PLAIN>(out, run, &row, &spans, &runs);
         } else if W::Lane::LANES > 1 || self.normalized {
-            self.shade_runs::<P, true>(out, run, &row, &spans, &runs);
+            self.shade_runs::<P, true, PLAIN>(out, run, &row, &spans, &runs);
         } else {
-            self.shade_runs::<P, false>(out, run, &row, &spans, &runs);
+            self.shade_runs::<P, false, PLAIN>(out, run, &row, &spans, &runs);
         }
-        Ok(())
     }
 }
 
@@ -84,7 +118,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// fills the rest with the background: the body of `render_segment_with`. `NORMALIZED`:
     /// see [`Prepared::shade`].
     #[inline(always)]
-    fn shade_runs<P: Pixel, const NORMALIZED: bool>(
+    fn shade_runs<P: Pixel, const NORMALIZED: bool, const PLAIN: bool>(
         &self,
         out: &mut [P],
         (x, y, encoding, background): (usize, u32, Encoding, &Background<P>),
@@ -112,7 +146,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     P::NEEDS_HITS,
                     P::LEVELS.is_none(),
                 );
-                store_packet(chunk, &packet, encoding, x0, y);
+                store_packet::<P, _, PLAIN>(chunk, &packet, encoding, x0, y);
             }
         });
     }
@@ -121,7 +155,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// (`narrow_row`), then each packet from them; while a packet's only candidate stays the
     /// same sphere, its constants are looked up once for all of its packets.
     #[inline(always)]
-    fn shade_narrow_runs<P: Pixel>(
+    fn shade_narrow_runs<P: Pixel, const PLAIN: bool>(
         &self,
         out: &mut [P],
         (x, y, encoding, background): (usize, u32, Encoding, &Background<P>),
@@ -164,7 +198,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 let packet = self.narrow_antialiased(shaded, (row, nrow), x0, list);
                 #[cfg(not(feature = "antialias"))]
                 let packet = shaded.0;
-                store_packet(chunk, &packet, encoding, x0, y);
+                store_packet::<P, _, PLAIN>(chunk, &packet, encoding, x0, y);
             }
         });
     }
@@ -235,9 +269,11 @@ impl<const S: usize> Candidates<S> {
 /// 0, `c·max + ½`, truncate; [`Gray8`](crate::Gray8) on the [`luma`]), so every width stores
 /// the bits the scalar path stores. Other encodings compute the linear codes a packet at a
 /// time ([`linear_code`]'s operations) and then apply the encoding's integer rule per pixel
-/// ([`crate::encoding`]).
+/// ([`crate::encoding`]). `PLAIN`: the encoding is the default, a constant of the row
+/// function's instantiation ([`Prepared::render_segment_encoded`]), so that its stores hold
+/// no other encoding's code.
 #[inline(always)]
-fn store_packet<P: Pixel, T: Lane>(
+fn store_packet<P: Pixel, T: Lane, const PLAIN: bool>(
     chunk: &mut [P],
     packet: &Packet<T>,
     encoding: Encoding,
@@ -246,7 +282,7 @@ fn store_packet<P: Pixel, T: Lane>(
 ) {
     let c = packet.color;
     if let Some(max) = P::LEVELS {
-        if encoding.is_default() {
+        if PLAIN || encoding.is_default() {
             if P::GRAY {
                 let l = luma([c.x, c.y, c.z]).quantize_lanes(max[0] as f32);
                 for (px, l) in chunk.iter_mut().zip(&l) {
