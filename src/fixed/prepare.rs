@@ -2,7 +2,7 @@
 //!
 //! This is the only place the fixed path touches floating point: `f32` arithmetic (IEEE
 //! `+ − × ÷`, exact power-of-two scaling), `libm`'s `sqrtf`/`floorf`/`ceilf` and the
-//! tangent of [`tan_half_degrees`], the same operations on every target, followed by exact
+//! camera's tangent (`Camera::tan_half_fov`), the same operations on every target, followed by exact
 //! conversions to fixed bits ([`super::convert`]). So the prepared numbers, and with them every pixel, are the same bits on a
 //! host, a Cortex-M0 and a RISC-V core.
 //!
@@ -484,42 +484,6 @@ fn to_levels(c: [f32; 3], item: Item, field: &'static str) -> Result<V3<U16F16>,
     Ok(out)
 }
 
-/// `tan(vfov/2)` for a field of view `0° < vfov < 180°` (the scene checks the range), within
-/// 2.8 ulp of the exact tangent of the `f32` input (`tests::tangent_within_its_bound`).
-///
-/// Why not `libm::tanf(vfov·π/360)`: its general argument reduction (`rem_pio2`, for any
-/// `f32`) is about 3.9 KB of an M0 firmware's flash, and rounding the argument to radians
-/// first costs up to 2,846 ulp as `vfov` nears 180°, where the tangent's slope is steep.
-/// Here the half angle stays in degrees until it is folded into `0..=45°` (`90° − a`, exact
-/// for `a ≥ 45°`), and one polynomial in `x²` (a least-squares minimax fit of
-/// `(tan x − x)/x³` on `[0, π/4]`, 1.8·10⁻⁸ relative) does the rest; `tan a = 1/tan(90° − a)`
-/// above 45°.
-fn tan_half_degrees(vfov_degrees: f32) -> f32 {
-    const P: [f32; 6] = [
-        0.333_331_56,
-        0.133_388,
-        0.053_411_21,
-        0.024_430_39,
-        0.003_119_519,
-        0.009_385_638,
-    ];
-    let half = vfov_degrees * 0.5;
-    let folded = half > 45.0;
-    let a = if folded { 90.0 - half } else { half };
-    let x = a * (core::f32::consts::PI / 180.0);
-    let s = x * x;
-    let mut p = P[5];
-    for c in [P[4], P[3], P[2], P[1], P[0]] {
-        p = p * s + c;
-    }
-    let t = x + x * (s * p);
-    if folded {
-        1.0 / t
-    } else {
-        t
-    }
-}
-
 /// `2^k` as an `f32`, for `k` in `-126..=127`.
 fn pow2(k: i32) -> f32 {
     f32::from_bits(((k + 127).clamp(1, 254) as u32) << 23)
@@ -631,7 +595,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         let camera = scene.camera();
         let (right, up, forward) = scene.camera_basis();
-        let tan = tan_half_degrees(camera.vfov_degrees);
+        let tan = camera.tan_half_fov();
         let (width_f, height_f) = (width as f32, height as f32);
         let x_scale = (width_f / height_f) * tan;
         if !(tan <= MAX_PLANE_SCALE && x_scale <= MAX_PLANE_SCALE) {
@@ -1111,39 +1075,5 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     pub fn with_spans(mut self, on: bool) -> Self {
         self.use_spans = on;
         self
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::tan_half_degrees;
-
-    /// The distance from `got` to `exact` in units of the `f32` spacing at `exact`.
-    fn ulps(got: f32, exact: f64) -> f64 {
-        let e = exact as f32;
-        let spacing = f32::from_bits(e.to_bits() + 1) - e;
-        (got as f64 - exact).abs() / spacing as f64
-    }
-
-    #[test]
-    fn tangent_within_its_bound() {
-        let mut worst = (0.0f64, 0.0f32);
-        // Every 2⁻¹⁰ of a degree, and the ends of the range.
-        let grid = (1..180 * 1024).map(|k| k as f32 / 1024.0);
-        let ends = [
-            1.0e-3,
-            f32::MIN_POSITIVE,
-            90.0,
-            179.999,
-            f32::from_bits(180.0f32.to_bits() - 1),
-        ];
-        for vfov in grid.chain(ends) {
-            let exact = libm::tan(vfov as f64 * 0.5 * core::f64::consts::PI / 180.0);
-            let e = ulps(tan_half_degrees(vfov), exact);
-            if e > worst.0 {
-                worst = (e, vfov);
-            }
-        }
-        assert!(worst.0 <= 2.8, "{} ulp at vfov = {}°", worst.0, worst.1);
     }
 }

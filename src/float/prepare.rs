@@ -285,8 +285,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         }
         let camera = scene.camera();
         let (right, up, forward) = scene.camera_basis();
-        let half_fov = camera.vfov_degrees * (core::f32::consts::PI / 360.0);
-        let tan = libm::tanf(half_fov);
+        let tan = camera.tan_half_fov();
         let width_f = width as f32;
         let height_f = height as f32;
         let eye = camera.position;
