@@ -10,7 +10,8 @@
 //! four 16×16→32 `MULS` and the carries between them, inline: about 20 instructions.
 //!
 //! Inline, those sequences repeat in flash at every product, and most products are in code
-//! that runs a few times a frame (the prepare, the precise lobe, the full-width kernel). So on
+//! that runs a few times a frame (the prepare, the precise lobe; and the full-width kernel,
+//! which the firmware builds leave out). So on
 //! ARMv6-M there are two forms of each: [`mul_uu`], [`mul_ii`], [`mul_iu`] and
 //! [`leading_zeros`] are one shared out-of-line routine each (about ten instructions more a
 //! call, one copy in flash), and [`inline`]'s are the inline sequences, for the narrow kernel's
@@ -22,8 +23,9 @@
 //! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
 //!
 //! ARMv6-M has no `CLZ` either: `leading_zeros` is a call to `__clzsi2` (twice for a `u64`).
-//! [`leading_zeros`] is a five-step binary search inline there, `u64::leading_zeros`
-//! elsewhere; `tests::leading_zeros_match` checks the two agree.
+//! [`leading_zeros`] is a five-step binary search there (in its shared routine; the narrow
+//! kernel inlines the 32-bit search), `u64::leading_zeros` elsewhere;
+//! `tests::leading_zeros_match` checks the two agree.
 
 /// The number of leading zero bits of `x` (64 for 0).
 #[inline(always)]
