@@ -25,6 +25,11 @@ pub const SCALAR_AA_RGB565_CRC32: u32 = 0x44cb_9b4f;
 /// arithmetic only, so the same bits on every target.
 pub const FIXED_RGB565_CRC32: u32 = 0x0d0e_0408;
 
+/// CRC32 of the same frame with analytic anti-aliasing on the fixed path
+/// (`PreparedFixed::with_antialiasing(true)`, features `antialias` and `full-width`): the M0
+/// and M4F firmware's `fixed-aa` runs (feature `antialias`; reported, not budgeted).
+pub const FIXED_AA_RGB565_CRC32: u32 = 0xc45c_06e5;
+
 /// Pixels of that frame whose primary ray hits a sphere on the scalar path: the `covered=`
 /// figure, and its per-covered-pixel ratio, of the firmware that do not count on target.
 pub const SCALAR_COVERED: u64 = 11_840;

@@ -109,11 +109,9 @@ fn only_pixels_next_to_an_outline_change_and_some_do() {
     assert!(changed > 500, "only {changed} pixels anti-aliased");
 }
 
-#[test]
-fn an_edge_pixel_lies_between_the_sphere_and_the_background() {
-    // One white diffuse sphere lit by a distant light from behind the eye, on a black
-    // background: every pixel lies between black and the brightest colour the sphere shows,
-    // and along a row the colour grows toward the centre (coverage, then N·L).
+/// One white diffuse sphere lit by a distant light from behind the eye, on a black
+/// background, and the image size for it.
+fn grey_sphere() -> (Scene<1, 1>, u32, u32) {
     let camera = Camera {
         position: Vec3::new(0.0, 0.0, 10.0),
         look_at: Vec3::new(0.0, 0.0, 0.0),
@@ -141,33 +139,212 @@ fn an_edge_pixel_lies_between_the_sphere_and_the_background() {
             intensity: 1.0,
         })
         .unwrap();
-    let (w, h) = (80u32, 80u32);
+    (scene, 80, 80)
+}
+
+/// On [`grey_sphere`]'s frame with and without anti-aliasing (red channel): every pixel lies
+/// between black and the brightest colour the sphere shows, the row through the centre has
+/// partial pixels, and along it the colour grows toward the centre (coverage, then `N·L`).
+fn assert_edges_between_sphere_and_background<T: PartialOrd + Copy + Default + core::fmt::Debug>(
+    smooth: &[T],
+    sharp: &[T],
+    w: usize,
+) {
+    let brightest = sharp
+        .iter()
+        .copied()
+        .fold(T::default(), |a, b| if b > a { b } else { a });
+    let y = smooth.len() / w / 2;
+    let row = &smooth[y * w..(y + 1) * w];
+    assert!(
+        row[..w / 2]
+            .iter()
+            .any(|&r| r > T::default() && r < brightest),
+        "no partial pixel on the row"
+    );
+    for &c in smooth {
+        assert!(
+            c >= T::default() && c <= brightest,
+            "{c:?} beyond {brightest:?}"
+        );
+    }
+    for pair in row[..w / 2].windows(2) {
+        assert!(pair[0] <= pair[1], "{:?} then {:?}", pair[0], pair[1]);
+    }
+}
+
+#[test]
+fn an_edge_pixel_lies_between_the_sphere_and_the_background() {
+    let (scene, w, h) = grey_sphere();
     let frame_aa: Vec<LinearRgb> = frame(
         &Prepared::<Scalar, 1, 1>::new(&scene, w, h)
             .unwrap()
             .with_antialiasing(true),
     );
     let sharp: Vec<LinearRgb> = frame(&Prepared::<Scalar, 1, 1>::new(&scene, w, h).unwrap());
-    let brightest = sharp.iter().map(|c| c.r).fold(0.0f32, f32::max);
-    // Row through the centre, from the left edge inward: 0 … partial … the sphere.
-    let y = (h / 2) as usize;
-    let row = &frame_aa[y * w as usize..(y + 1) * w as usize];
-    let partial: Vec<f32> = row
-        .iter()
-        .map(|c| c.r)
-        .take(w as usize / 2)
-        .filter(|&r| r > 0.0 && r < brightest)
-        .collect();
-    assert!(!partial.is_empty(), "no partial pixel on the row");
     for c in &frame_aa {
-        assert!(
-            (0.0..=brightest).contains(&c.r),
-            "{c:?} beyond [0, {brightest}]"
-        );
         assert!(c.r == c.g && c.g == c.b, "{c:?} is not grey");
     }
-    // Along the left half of the row the colour never decreases (coverage then shading grow).
-    for pair in row[..w as usize / 2].windows(2) {
-        assert!(pair[0].r <= pair[1].r, "{:?} then {:?}", pair[0], pair[1]);
+    let red = |f: &[LinearRgb]| f.iter().map(|c| c.r).collect::<Vec<f32>>();
+    assert_edges_between_sphere_and_background(&red(&frame_aa), &red(&sharp), w as usize);
+}
+
+/// The fixed path's anti-aliasing (features `antialias` and `full-width`): only pixels next
+/// to an outline change, the blends agree with the float paths' within a budget, and an
+/// anti-aliased frame has the same bits on every target (a golden CRC, which
+/// `.ci/bit-identity` checks on x86-64, aarch64 and wasm32).
+#[cfg(feature = "full-width")]
+mod fixed {
+    use super::common::{frame, random_scenes, random_scenes_all_models};
+    use super::{assert_edges_between_sphere_and_background, grey_sphere, near_outline};
+    use shadeline::*;
+
+    /// `scene`'s fixed frame at `w × h`: sharp, its hit records, and anti-aliased.
+    fn frames<const S: usize, const L: usize>(
+        scene: &Scene<S, L>,
+        w: u32,
+        h: u32,
+    ) -> (Vec<Rgb888>, Vec<HitRecord>, Vec<Rgb888>) {
+        let f = PreparedFixed::<S, L>::new(scene, w, h).unwrap();
+        (frame(&f), frame(&f), frame(&f.with_antialiasing(true)))
+    }
+
+    #[test]
+    fn only_pixels_next_to_an_outline_change_and_some_do() {
+        let (w, h) = (61, 47);
+        let mut all = vec![
+            (
+                "exponent series".to_string(),
+                frames(&exponent_series().unwrap(), w, h),
+            ),
+            ("materials".to_string(), frames(&materials().unwrap(), w, h)),
+        ];
+        for (i, scene) in random_scenes(16, 0xed6e).iter().enumerate() {
+            all.push((format!("random scene {i}"), frames(scene, w, h)));
+        }
+        let mut changed = 0;
+        for (what, (sharp, hits, smooth)) in &all {
+            for (k, (a, b)) in sharp.iter().zip(smooth).enumerate() {
+                if a != b {
+                    changed += 1;
+                    assert!(
+                        near_outline(hits, w as usize, k),
+                        "{what}: pixel ({}, {}) changed away from every outline: {a:?} -> {b:?}",
+                        k % w as usize,
+                        k / w as usize
+                    );
+                }
+            }
+        }
+        assert!(changed > 500, "only {changed} pixels anti-aliased");
+    }
+
+    #[test]
+    fn an_edge_pixel_lies_between_the_sphere_and_the_background() {
+        let (scene, w, h) = grey_sphere();
+        let (sharp, _, smooth) = frames(&scene, w, h);
+        for c in &smooth {
+            assert!(c.r == c.g && c.g == c.b, "{c:?} is not grey");
+        }
+        let red = |f: &[Rgb888]| f.iter().map(|c| c.r).collect::<Vec<u8>>();
+        assert_edges_between_sphere_and_background(&red(&smooth), &red(&sharp), w as usize);
+    }
+
+    #[test]
+    fn turning_it_off_and_preparing_again_give_the_sharp_frame() {
+        let scene = exponent_series_with_capacity::<5, 1>().unwrap();
+        let (sharp, _, smooth) = frames(&scene, 64, 48);
+        assert_ne!(sharp, smooth);
+        let frame_off = PreparedFixed::<5, 1>::new(&scene, 64, 48)
+            .unwrap()
+            .with_antialiasing(true)
+            .with_antialiasing(false);
+        assert_eq!(frame::<Rgb888, _>(&frame_off), sharp);
+        let mut again = PreparedFixed::<5, 1>::EMPTY;
+        again.prepare(&scene, 64, 48).unwrap();
+        again.set_antialiasing(true);
+        assert_eq!(frame::<Rgb888, _>(&again), smooth);
+        again.prepare(&scene, 64, 48).unwrap();
+        assert_eq!(frame::<Rgb888, _>(&again), sharp, "prepare turns it off");
+    }
+
+    /// The largest channel difference in levels, and the share of pixels more than two levels
+    /// apart, between the fixed and the scalar anti-aliased frames of `scene`.
+    fn against_float<const S: usize, const L: usize>(
+        scene: &Scene<S, L>,
+        w: u32,
+        h: u32,
+    ) -> (u8, f64) {
+        let float: Vec<Rgb888> = frame(
+            &Prepared::<Scalar, S, L>::new(scene, w, h)
+                .unwrap()
+                .with_antialiasing(true),
+        );
+        let (_, _, fixed) = frames(scene, w, h);
+        let diffs: Vec<u8> = float
+            .iter()
+            .zip(&fixed)
+            .map(|(a, b)| {
+                a.r.abs_diff(b.r)
+                    .max(a.g.abs_diff(b.g))
+                    .max(a.b.abs_diff(b.b))
+            })
+            .collect();
+        let max = diffs.iter().copied().max().unwrap_or(0);
+        let over = diffs.iter().filter(|&&d| d > 2).count() as f64 / diffs.len() as f64;
+        (max, over)
+    }
+
+    /// The budget of the fixed anti-aliased frames against the scalar ones: at most this
+    /// many levels in any channel…
+    const MAX_LEVELS: u8 = 8;
+    /// …and at most this share of a frame's pixels more than two levels apart.
+    const MAX_SHARE_OVER_TWO: f64 = 0.0025;
+
+    #[test]
+    fn fixed_edges_agree_with_the_float_edges() {
+        let mut rows = vec![
+            (
+                "exponent series".to_string(),
+                against_float(&exponent_series().unwrap(), 160, 117),
+            ),
+            (
+                "materials".to_string(),
+                against_float(&materials().unwrap(), 97, 61),
+            ),
+        ];
+        for (i, scene) in random_scenes(12, 0xa11a5)
+            .iter()
+            .chain(&random_scenes_all_models(12, 0xa11a6))
+            .enumerate()
+        {
+            rows.push((format!("random scene {i}"), against_float(scene, 53, 41)));
+        }
+        println!("scene | max levels | more than 2 levels apart");
+        for (name, (max, over)) in &rows {
+            println!("{name} | {max} | {:.3} %", 100.0 * over);
+        }
+        for (name, (max, over)) in &rows {
+            assert!(
+                *max <= MAX_LEVELS && *over <= MAX_SHARE_OVER_TWO,
+                "{name}: {max} levels, {:.3} % over 2",
+                100.0 * over
+            );
+        }
+    }
+
+    /// CRC32 of an anti-aliased fixed frame of the exponent series at 160×120, `Rgb565`:
+    /// the same on every target.
+    const GOLDEN_AA_160X120: u32 = 0xdb0f_a1b3;
+
+    #[test]
+    fn an_antialiased_fixed_frame_has_the_same_bits_everywhere() {
+        let f = PreparedFixed::<5, 1>::new(&exponent_series_with_capacity().unwrap(), 160, 120)
+            .unwrap()
+            .with_antialiasing(true);
+        let pixels: Vec<Rgb565> = frame(&f);
+        let bytes: Vec<u8> = pixels.iter().flat_map(|p| p.0.to_le_bytes()).collect();
+        let crc = crc32fast::hash(&bytes);
+        assert_eq!(crc, GOLDEN_AA_160X120, "CRC {crc:#010x}");
     }
 }

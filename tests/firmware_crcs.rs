@@ -74,6 +74,21 @@ fn fixed_crc_matches_the_firmware_constant() {
     );
 }
 
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+#[test]
+fn antialiased_fixed_crc_matches_the_firmware_constant() {
+    let scene = exponent_series().expect("built-in scene is valid");
+    let path = PreparedFixed::new(&scene, expected::WIDTH, expected::HEIGHT)
+        .unwrap()
+        .with_antialiasing(true);
+    let crc = rgb565_crc32(&frame(&path));
+    assert_eq!(
+        crc,
+        expected::FIXED_AA_RGB565_CRC32,
+        "host anti-aliased fixed CRC is {crc:#010x}: update firmware/expected.rs"
+    );
+}
+
 /// Pixels whose primary ray hits a sphere, from the path's own hit records.
 fn covered<R: Render>(path: &R) -> u64 {
     let mut hits = vec![HitRecord::default(); (path.width() * path.height()) as usize];

@@ -133,10 +133,7 @@ pub const PATHS: &[Path] = &[
     path("simd4", float::<Simd4>),
     path("simd8", float::<Simd8>),
     path("fixed", |s, w, h, options| {
-        if options.antialias {
-            return Err(PrepareError::NoAntialiasing("fixed"));
-        }
-        boxed(PreparedFixed::<S, L>::new(s, w, h))
+        boxed(PreparedFixed::<S, L>::new(s, w, h).map(|f| f.with_antialiasing(options.antialias)))
     }),
 ];
 

@@ -1,6 +1,7 @@
-//! The analytic anti-aliased silhouettes against a 16×16 supersampled truth, next to plain
-//! 4×4 supersampling: on the exponent series, the materials gallery and random scenes of
-//! spheres that overlap on the screen, the analytic edges must beat 4×4 supersampling (a
+//! The analytic anti-aliased silhouettes, on the scalar and on the fixed path, against a
+//! 16×16 supersampled truth, next to plain 4×4 supersampling: on the exponent series, the
+//! materials gallery and random scenes of spheres that overlap on the screen, the analytic
+//! edges of both paths must beat 4×4 supersampling (a
 //! lower mean error, and as many pixels or more within 8 levels) and keep at least 99% of the
 //! silhouette pixels within 8 levels of the truth. The largest error is printed, not
 //! compared: where a shadow's edge crosses a silhouette pixel, supersampling smooths the
@@ -8,15 +9,17 @@
 //! `cargo test -p shadeline-harness --test edges -- --nocapture` prints the tables.
 
 use shadeline::{
-    Camera, Light, LinearRgb, Material, Model, Prepared, Render, Rgb888, Scalar, Sphere, Vec3,
+    Camera, Light, LinearRgb, Material, Model, Prepared, PreparedFixed, Render, Rgb888, Scalar,
+    Sphere, Vec3,
 };
 use shadeline_harness::edges::{
     box_filtered, edge_stats, edge_table, EdgeRow, EdgeStats, SUPERSAMPLES, TRUTH_SAMPLES,
 };
 use shadeline_harness::scene_file::{builtin_scene, preset, FileScene, MAX_LIGHTS, MAX_SPHERES};
 
-/// The silhouette statistics of the sharp frame, 4×4 supersampling and the analytic edges.
-fn measure(scene: &FileScene, w: u32, h: u32, name: &str) -> [EdgeStats; 3] {
+/// The silhouette statistics of the sharp frame, 4×4 supersampling and the analytic edges on
+/// the scalar path and on the fixed path.
+fn measure(scene: &FileScene, w: u32, h: u32, name: &str) -> [EdgeStats; 4] {
     let truth = box_filtered(scene, w, h, TRUTH_SAMPLES, 2).unwrap();
     let supersampled: Vec<Rgb888> = box_filtered(scene, w, h, SUPERSAMPLES, 2)
         .unwrap()
@@ -31,12 +34,25 @@ fn measure(scene: &FileScene, w: u32, h: u32, name: &str) -> [EdgeStats; 3] {
         .with_antialiasing(true)
         .render_frame(&mut smooth)
         .unwrap();
+    let mut fixed = sharp.clone();
+    PreparedFixed::<MAX_SPHERES, MAX_LIGHTS>::new(scene, w, h)
+        .unwrap()
+        .with_antialiasing(true)
+        .render_frame(&mut fixed)
+        .unwrap();
     let stats = [
         edge_stats(&truth, &sharp).unwrap(),
         edge_stats(&truth, &supersampled).unwrap(),
         edge_stats(&truth, &smooth).unwrap(),
+        edge_stats(&truth, &fixed).unwrap(),
     ];
-    let rows: Vec<EdgeRow> = ["sharp", "4×4 supersampling", "analytic"]
+    let methods = [
+        "sharp",
+        "4×4 supersampling",
+        "analytic (scalar)",
+        "analytic (fixed)",
+    ];
+    let rows: Vec<EdgeRow> = methods
         .iter()
         .zip(stats)
         .map(|(m, stats)| EdgeRow {
@@ -48,21 +64,24 @@ fn measure(scene: &FileScene, w: u32, h: u32, name: &str) -> [EdgeStats; 3] {
     stats
 }
 
-fn assert_beats_supersampling([sharp, ss, analytic]: [EdgeStats; 3], name: &str) {
+/// Both analytic frames (scalar, fixed) against 4×4 supersampling.
+fn assert_beats_supersampling([sharp, ss, scalar, fixed]: [EdgeStats; 4], name: &str) {
     assert!(
         sharp.pixels > 100,
         "{name}: {} silhouette pixels",
         sharp.pixels
     );
-    assert!(
-        analytic.mean < ss.mean,
-        "{name}: mean {analytic:?} vs {ss:?}"
-    );
-    assert!(
-        analytic.within_8 >= ss.within_8,
-        "{name}: within 8 {analytic:?} vs {ss:?}"
-    );
-    assert!(analytic.within_8 >= 99.0, "{name}: {analytic:?}");
+    for (path, analytic) in [("scalar", scalar), ("fixed", fixed)] {
+        assert!(
+            analytic.mean < ss.mean,
+            "{name}, {path}: mean {analytic:?} vs {ss:?}"
+        );
+        assert!(
+            analytic.within_8 >= ss.within_8,
+            "{name}, {path}: within 8 {analytic:?} vs {ss:?}"
+        );
+        assert!(analytic.within_8 >= 99.0, "{name}, {path}: {analytic:?}");
+    }
 }
 
 #[test]

@@ -103,31 +103,48 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         spans: &[Option<Span>],
         record_hits: bool,
     ) -> Option<Shaded> {
-        let (index, sphere, t) = self.hit(d, x, spans)?;
+        let (index, sphere, t) = self.hit(d, x, spans, |_| true)?;
+        Some(self.shade_hit(index, sphere, d, t, record_hits))
+    }
+
+    /// The stages after `hit`: `normal`, `lights` and `combine` of sphere `index`, met by the
+    /// unit ray `d` at distance `t`.
+    #[cfg(feature = "full-width")]
+    #[inline(always)]
+    pub(super) fn shade_hit(
+        &self,
+        index: usize,
+        sphere: &FixedSphere,
+        d: V3<Unit>,
+        t: i64,
+        record_hits: bool,
+    ) -> Shaded {
         let (p, n) = self.normal(sphere, d, t);
         let (diffuse, specular, shadowed) = self.lights(index, sphere, p, n, d, record_hits);
-        Some(Shaded {
+        Shaded {
             color: self.combine(sphere, diffuse, specular),
             hit: HitRecord {
                 sphere: Some(index as u16),
                 shadowed,
             },
-        })
+        }
     }
 
-    /// The nearest sphere with `t > ε` among those whose span on this row covers `x`.
+    /// The nearest sphere with `t > ε` among those whose span on this row covers `x` and
+    /// that `keep` keeps (the edges stage leaves some out).
     #[cfg(feature = "full-width")]
     #[inline(always)]
-    fn hit(
+    pub(super) fn hit(
         &self,
         d: V3<Unit>,
         x: u32,
         spans: &[Option<Span>],
+        keep: impl Fn(usize) -> bool,
     ) -> Option<(usize, &FixedSphere, i64)> {
         let eps = self.epsilon.to_bits() as i64;
         let mut best: Option<(usize, &FixedSphere, i64)> = None;
         for (k, (s, span)) in self.spheres.iter().zip(spans).enumerate() {
-            if !span.is_some_and(|span| span.start <= x && x < span.end) {
+            if !span.is_some_and(|span| span.start <= x && x < span.end) || !keep(k) {
                 continue;
             }
             if let Some(t) = nearest_hit(s.eye_offset, d, s.radius_sq.to_bits(), eps) {

@@ -114,6 +114,8 @@
 //! zeros) · `exact` (`f32` as mantissa and exponent).
 
 mod convert;
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+mod edges;
 mod exact;
 mod kernel;
 mod mul;

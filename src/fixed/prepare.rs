@@ -446,6 +446,9 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     /// Per sphere and light, the narrow kernel's constants (set with `narrow`).
     pub(crate) narrow_lights: heapless::Vec<[NarrowLight; L], S>,
     pub(crate) use_spans: bool,
+    /// Whether silhouettes are anti-aliased ([`PreparedFixed::with_antialiasing`]).
+    #[cfg(all(feature = "antialias", feature = "full-width"))]
+    pub(crate) antialias: bool,
 }
 
 fn out_of_range(item: Item, field: &'static str) -> RenderError {
@@ -532,6 +535,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         narrow: None,
         narrow_lights: heapless::Vec::new(),
         use_spans: true,
+        #[cfg(all(feature = "antialias", feature = "full-width"))]
+        antialias: false,
     };
 
     /// Prepares `scene` for a `width × height` image into `self`, in place: what
@@ -577,6 +582,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.narrow = None;
         self.narrow_lights.clear();
         self.use_spans = true;
+        #[cfg(all(feature = "antialias", feature = "full-width"))]
+        {
+            self.antialias = false;
+        }
     }
 
     #[inline(never)]
@@ -1075,5 +1084,35 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     pub fn with_spans(mut self, on: bool) -> Self {
         self.use_spans = on;
         self
+    }
+
+    /// Turns analytic anti-aliasing of the silhouettes on or off (off by default, and after
+    /// every [`prepare`](Self::prepare)): a pixel an outline crosses blends the front
+    /// sphere's colour with what lies behind it by the sphere's coverage of the pixel, in
+    /// integers, by the float paths' rule; other pixels keep their bits. Needs the features
+    /// `antialias` and `full-width` (the edge pixels are shaded by the full-width kernel);
+    /// see `src/fixed/edges.rs`.
+    ///
+    /// ```
+    /// use shadeline::{exponent_series, PreparedFixed, Render, Rgb888};
+    /// let sharp = PreparedFixed::new(&exponent_series()?, 96, 64)?;
+    /// let smooth = sharp.clone().with_antialiasing(true);
+    /// let (mut a, mut b) = ([Rgb888::default(); 96], [Rgb888::default(); 96]);
+    /// sharp.render_line(32, &mut a)?;
+    /// smooth.render_line(32, &mut b)?;
+    /// assert_ne!(a, b); // the row crosses the spheres' outlines
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    #[cfg(all(feature = "antialias", feature = "full-width"))]
+    pub fn with_antialiasing(mut self, on: bool) -> Self {
+        self.set_antialiasing(on);
+        self
+    }
+
+    /// [`with_antialiasing`](Self::with_antialiasing) in place, for a frame kept in a
+    /// `static` and prepared there.
+    #[cfg(all(feature = "antialias", feature = "full-width"))]
+    pub fn set_antialiasing(&mut self, on: bool) {
+        self.antialias = on;
     }
 }

@@ -44,7 +44,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         out.clear();
         for s in &self.spheres {
             let span = if self.use_spans {
-                s.bounds.and_then(|b| b.on_row(y, self.height))
+                s.bounds
+                    .and_then(|b| b.on_row(y, self.height, self.rectangles()))
             } else {
                 Some(full)
             };
@@ -177,10 +178,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
+    /// Whether the spans are the spheres' rectangles alone (anti-aliased frames: the
+    /// outlines' row spans leave out pixels within reach of an outline).
+    #[inline(always)]
+    fn rectangles(&self) -> bool {
+        #[cfg(all(feature = "antialias", feature = "full-width"))]
+        return self.antialias;
+        #[cfg(not(all(feature = "antialias", feature = "full-width")))]
+        false
+    }
+
     #[cfg(feature = "full-width")]
     /// The unnormalized primary direction of pixel `(x, y)`:
     /// `forward + (h − 2y − 1)·step_y + (2x + 1 − w)·step_x`, exact in I16F48.
-    fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
+    pub(super) fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
         let dy = self.height as i64 - 2 * y as i64 - 1;
         let dx = 2 * x as i64 + 1 - self.width as i64;
         each3(|i| {
@@ -250,6 +261,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             let row = (y, &spans[..], encoding, &background);
             if self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels) {
+                #[cfg(all(feature = "antialias", feature = "full-width"))]
+                self.antialiased::<P, PLAIN>((y, &spans[..], encoding), start as u32, run_pixels);
                 return;
             }
             // Without the full-width kernel every prepared frame is a narrow one.
@@ -270,7 +283,25 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     *c = I16F48::from_bits(c.to_bits().saturating_add(a));
                 }
             }
+            #[cfg(all(feature = "antialias", feature = "full-width"))]
+            self.antialiased::<P, PLAIN>((y, &spans[..], encoding), start as u32, run_pixels);
         });
+    }
+
+    /// The `edges` stage over a shaded run, if the frame is anti-aliased.
+    #[cfg(all(feature = "antialias", feature = "full-width"))]
+    #[inline(never)]
+    fn antialiased<P: Pixel, const PLAIN: bool>(
+        &self,
+        (y, spans, encoding): (u32, &[Option<Span>], Encoding),
+        start: u32,
+        run_pixels: &mut [P],
+    ) {
+        if self.antialias {
+            self.antialias_run((y, spans), start, run_pixels, |color, hit, x| {
+                encode::<P, PLAIN>(color, hit, encoding, x, y)
+            });
+        }
     }
 }
 

@@ -54,15 +54,15 @@ pub(crate) struct Bounds {
 
 impl Bounds {
     /// The span on row `y` of a frame `height` rows high: the rectangle's columns, narrowed
-    /// to the outline's on that row.
+    /// to the outline's on that row unless `rectangle`.
     #[inline(always)]
-    pub(crate) fn on_row(&self, y: u32, height: u32) -> Option<Span> {
+    pub(crate) fn on_row(&self, y: u32, height: u32, rectangle: bool) -> Option<Span> {
         if !(self.rows.0 <= y && y < self.rows.1) {
             return None;
         }
         match &self.conic {
-            Some(conic) => conic.on_row(y, height, self.cols),
-            None => Some(self.cols),
+            Some(conic) if !rectangle => conic.on_row(y, height, self.cols),
+            _ => Some(self.cols),
         }
     }
 }

@@ -9,7 +9,8 @@
 //! deepest stage — building the scene, preparing the frame or rendering a row. It does not
 //! count covered pixels itself (that would link a second row loop, into hit records, that no
 //! user's firmware has): its `covered=` is the host's count from `expected.rs`. The report's `peak_stack` plus `llvm-size`'s
-//! `.data + .bss` is the RAM it needs.
+//! `.data + .bss` is the RAM it needs. With the feature `antialias` it also renders the
+//! frame with the fixed path's analytic anti-aliasing (`fixed-aa`), in the same buffers.
 //!
 //! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -64,6 +65,26 @@ fn main() -> ! {
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
+            session.fail();
+        }
+    }
+    #[cfg(feature = "antialias")]
+    match session.build_in(FIXED, |f| {
+        f.prepare(scene, WIDTH, HEIGHT)
+            .map(|()| f.set_antialiasing(true))
+    }) {
+        (Some(path), prepare) => session.run(
+            "fixed-aa",
+            path,
+            Sink::Line(LINE),
+            prepare,
+            Expected {
+                crc: common::expected::FIXED_AA_RGB565_CRC32,
+                covered: FIXED_COVERED,
+            },
+        ),
+        (None, _) => {
+            session.note("shadeline-fw error=prepare-fixed-aa\n");
             session.fail();
         }
     }

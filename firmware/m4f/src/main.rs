@@ -6,8 +6,8 @@
 //! The scalar path takes its square roots from the FPU's `VSQRT.F32` ([`Vsqrt`], as an M4F
 //! firmware would: `scalar`); the same frame with `libm`'s integer square root, the crate's
 //! default [`Scalar`], is reported too (`scalar-libm`). With the feature
-//! `antialias`, the scalar path also renders the frame with analytic anti-aliasing
-//! (`scalar-aa`); with the feature `microfacets`, it also renders the microfacet gallery
+//! `antialias`, the scalar and the fixed path also render the frame with analytic
+//! anti-aliasing (`scalar-aa`, `fixed-aa`); with the feature `microfacets`, it also renders the microfacet gallery
 //! (GGX and Oren–Nayar spheres next to normalized Blinn-Phong and Lambert ones) on the
 //! scalar and the fixed path (`scalar-microfacets`, `fixed-microfacets`), and a frame of
 //! each reflection model alone (`shadeline::covered_sphere` of each of
@@ -285,6 +285,26 @@ fn main() -> ! {
         ),
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
+            session.fail();
+        }
+    }
+    #[cfg(feature = "antialias")]
+    match session.build_in(FIXED, |f| {
+        f.prepare(scene, WIDTH, HEIGHT)
+            .map(|()| f.set_antialiasing(true))
+    }) {
+        (Some(path), prepare) => session.run(
+            "fixed-aa",
+            path,
+            Sink::Frame(FRAME),
+            prepare,
+            Expected {
+                crc: common::expected::FIXED_AA_RGB565_CRC32,
+                covered: FIXED_COVERED,
+            },
+        ),
+        (None, _) => {
+            session.note("shadeline-fw error=prepare-fixed-aa\n");
             session.fail();
         }
     }
