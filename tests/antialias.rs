@@ -268,6 +268,31 @@ mod fixed {
         assert_eq!(frame::<Rgb888, _>(&again), sharp, "prepare turns it off");
     }
 
+    /// The edges stage tests only the columns near each sphere's outline (a band per row
+    /// from the spans' conic): with spans off it tests every pixel, and finds the same edges.
+    #[test]
+    fn the_outline_bands_leave_out_no_edge() {
+        let check = |name: &str, sharp: PreparedFixed<8, 4>| {
+            let with: Vec<Rgb888> = frame(&sharp.clone().with_antialiasing(true));
+            let without: Vec<Rgb888> = frame(&sharp.with_spans(false).with_antialiasing(true));
+            assert!(
+                with == without,
+                "{name}: the bands changed the anti-aliased frame"
+            );
+        };
+        let series = exponent_series_with_capacity::<8, 4>().unwrap();
+        check(
+            "exponent series",
+            PreparedFixed::new(&series, 96, 70).unwrap(),
+        );
+        for (i, scene) in random_scenes(16, 0xba2d).iter().enumerate() {
+            check(
+                &format!("random scene {i}"),
+                PreparedFixed::new(scene, 61, 47).unwrap(),
+            );
+        }
+    }
+
     /// The largest channel difference in levels, and the share of pixels more than two levels
     /// apart, between the fixed and the scalar anti-aliased frames of `scene`.
     fn against_float<const S: usize, const L: usize>(

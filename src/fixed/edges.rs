@@ -227,20 +227,31 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
-    /// Anti-aliases the shaded run `run_pixels` from column `start` of row `y` (see the
-    /// module docs): pixels with an outline within reach are shaded again and blended, and
+    /// Anti-aliases the shaded run `run_pixels` from column `start` of row `y`, whose spans
+    /// are `spans` and whose columns near each sphere's outline are `near` (see the module
+    /// docs): pixels with an outline within reach are shaded again and blended, and
     /// `encode` turns their colour (and the centre ray's hit record) into the pixel.
     pub(super) fn antialias_run<P>(
         &self,
-        row: (u32, &[Option<Span>]),
+        (y, spans): (u32, &[Option<Span>]),
+        near: &[[Option<Span>; 2]],
         start: u32,
         run_pixels: &mut [P],
         encode: impl Fn([u32; 3], crate::pixel::HitRecord, u32) -> P,
     ) {
-        let (y, spans) = row;
         let view = self.edge_view();
+        // The centre rays step by one addition per pixel, exactly (as in the row driver).
+        let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
+        let mut next = self.direction(start, y);
         for (px, column) in run_pixels.iter_mut().zip(start..) {
-            let u = self.direction(column, y);
+            let u = next;
+            for (c, a) in next.iter_mut().zip(advance) {
+                *c = I16F48::from_bits(c.to_bits().saturating_add(a));
+            }
+            let within = |s: &Option<Span>| s.is_some_and(|s| s.start <= column && column < s.end);
+            if !near.iter().flatten().any(within) {
+                continue;
+            }
             let Some(d) = ray(u) else {
                 continue;
             };
@@ -249,6 +260,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let Some(first) = self.edge(&view, (u, d), centre, None, column, spans) else {
                 continue;
             };
+
             let (base, record) = match hit {
                 Some((k, sphere, t)) => {
                     let s = self.shade_hit(k, sphere, d, t, false);

@@ -297,11 +297,28 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         start: u32,
         run_pixels: &mut [P],
     ) {
-        if self.antialias {
-            self.antialias_run((y, spans), start, run_pixels, |color, hit, x| {
-                encode::<P, PLAIN>(color, hit, encoding, x, y)
-            });
+        if !self.antialias {
+            return;
         }
+        // The columns near each sphere's outline: only their pixels are tested.
+        let mut near = heapless::Vec::<[Option<Span>; 2], S>::new();
+        for s in &self.spheres {
+            let full = Span {
+                start: 0,
+                end: self.width,
+            };
+            let bands = match s.bounds {
+                Some(b) if self.use_spans => b.near_outline(y, self.height),
+                Some(_) => [Some(full), None],
+                None => [None, None],
+            };
+            // Same capacity as the sphere list: cannot fail.
+            let pushed = near.push(bands);
+            debug_assert!(pushed.is_ok(), "more bands than spheres");
+        }
+        self.antialias_run((y, spans), &near, start, run_pixels, |color, hit, x| {
+            encode::<P, PLAIN>(color, hit, encoding, x, y)
+        });
     }
 }
 

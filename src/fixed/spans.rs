@@ -67,6 +67,32 @@ impl Bounds {
     }
 }
 
+/// How far from a row the edges stage looks for an outline, in half pixels (`dy`): two
+/// pixels up and down, beyond the `1/√2` pixel of its reach, for the first-order distance
+/// it takes can underrate the true one near a small sphere.
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+const NEAR_DY: i32 = 3;
+/// The same in columns, on each side.
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+const NEAR_COLUMNS: i64 = 2;
+
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+impl Bounds {
+    /// The columns of row `y` (frame `height` rows high) near the sphere's outline, as two
+    /// spans that may overlap, for the edges stage: a pixel outside both has no point of the
+    /// outline within two pixels. The rectangle's columns on its rows where the sphere has
+    /// no row conic.
+    pub(crate) fn near_outline(&self, y: u32, height: u32) -> [Option<Span>; 2] {
+        if !(self.rows.0 <= y && y < self.rows.1) {
+            return [None, None];
+        }
+        match &self.conic {
+            Some(conic) => conic.near_outline(y, height, self.cols),
+            None => [Some(self.cols), None],
+        }
+    }
+}
+
 /// The sphere's outline on the screen, a conic, as the row arithmetic needs it.
 ///
 /// With `dy = h − 2y − 1` the row's offset from the image centre in half pixels, the rays of
@@ -141,6 +167,64 @@ impl RowConic {
             start: start as u32,
             end: end as u32,
         })
+    }
+}
+
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+impl RowConic {
+    /// See [`Bounds::near_outline`]. Over the rows `dy ± NEAR_DY`, the outline's columns lie
+    /// within `x_c ± [hw_min, hw_max]` with `x_c` between its values at both ends and `hw²`
+    /// between its values at the nearest and farthest `|dy − dy₀|`, each bound widened by
+    /// the same slack as [`Self::on_row`]'s, the inner one shrunk by it.
+    fn near_outline(&self, y: u32, height: u32, cols: Span) -> [Option<Span>; 2] {
+        let dy = height as i32 - 2 * y as i32 - 1;
+        let (lo, hi) = ((dy - NEAR_DY) << 8, (dy + NEAR_DY) << 8); // Q8
+        let err = (self.dy0.unsigned_abs() >> 16) + 2;
+        let (ta, tb) = (
+            (lo - self.dy0).unsigned_abs(),
+            (hi - self.dy0).unsigned_abs(),
+        );
+        let t_near = if lo <= self.dy0 && self.dy0 <= hi {
+            0
+        } else {
+            ta.min(tb).saturating_sub(err)
+        };
+        let t_far = ta.max(tb) + err;
+        let h = (self.h as i64) << 8; // Q16
+                                      // G·t² in Q16, t² rounded down (outer bound) or up (inner bound).
+        let gt = |t: u32, up: bool| {
+            let t2 = (mul_uu(t, t) + if up { 0xffff } else { 0 }) >> 16;
+            mul_uu(self.g, t2.min(u32::MAX as u64) as u32) as i64
+        };
+        let (g_near, g_far) = (gt(t_near, false), gt(t_far, true));
+        let outer = h - g_near + (4 << 16) + ((h + g_near) >> 13);
+        if outer < 0 {
+            return [None, None];
+        }
+        let inner = h - g_far - (4 << 16) - ((h + g_far) >> 13);
+        // Columns: √ in Q8, rounded out (outer) or in (inner). Both below 2⁴² in Q16.
+        let root = |v: i64| (v.max(0) as u64).isqrt() as i64;
+        let (out_cols, in_cols) = ((root(outer) >> 8) + 1, root(inner) >> 8);
+        let centre = |d: i32| ((self.p as i64) << 8) + mul_ii(self.q, d);
+        let (a, b) = (centre(dy - NEAR_DY), centre(dy + NEAR_DY));
+        let (c_lo, c_hi) = (a.min(b) >> 16, (a.max(b) >> 16) + 1);
+        let clip = |start: i64, end: i64| {
+            let (start, end) = (start.max(cols.start as i64), end.min(cols.end as i64));
+            (start < end).then_some(Span {
+                start: start as u32,
+                end: end as u32,
+            })
+        };
+        [
+            clip(
+                c_lo - out_cols - NEAR_COLUMNS,
+                c_hi - in_cols + NEAR_COLUMNS + 1,
+            ),
+            clip(
+                c_lo + in_cols - NEAR_COLUMNS,
+                c_hi + out_cols + NEAR_COLUMNS + 1,
+            ),
+        ]
     }
 }
 
