@@ -77,7 +77,7 @@
 //!
 //! | feature | default | what it adds |
 //! |---|---|---|
-//! | `antialias` | on | `Prepared::with_antialiasing`: analytic anti-aliasing of the silhouettes on the float paths (see `src/float/edges.rs`); without it the float kernel holds no edge code |
+//! | `antialias` | on | `Prepared::with_antialiasing` and, with `full-width` too, `PreparedFixed::with_antialiasing`: analytic anti-aliasing of the silhouettes (see `src/float/edges.rs`, `src/fixed/edges.rs`); without it the kernels hold no edge code |
 //! | `area-lights` | on | sphere lights (point lights with a `radius`) on the float paths (see `src/float/area.rs`): representative-point highlights, the sphere's irradiance, analytic soft shadows; without it the float kernel holds none of that code and the float paths refuse such a light with [`RenderError::SphereLight`], as the fixed path always does |
 //! | `models` | on | the Oren–Nayar and GGX models ([`Model::OrenNayar`], [`Model::Ggx`]) on every path; without it the kernels and prepares hold none of their code, and [`Scene::add_sphere`] refuses such a sphere with [`Problem::ModelNotBuilt`] (the variants exist either way) |
 //! | `full-width` | on | the fixed path's full-width kernel (32×32→64-bit products throughout), for the frames its narrow kernel does not take: point lights, the normalized models and Lambert, Oren–Nayar and GGX, fields of view over about 90° on the diagonal, a camera close to a sphere, spheres within `4ε` of their casters; without it the fixed path is the narrow kernel alone and [`PreparedFixed::new`] refuses such a frame with [`RenderError::NeedsFullWidth`] naming the item and field (see [`fixed`]) |

@@ -52,7 +52,7 @@ impl<R: Render + Sync> Frame for R {
 /// How a frame is rendered beyond its scene and size.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Options {
-    /// Analytic anti-aliasing of the silhouettes (the float paths' `with_antialiasing`).
+    /// Analytic anti-aliasing of the silhouettes (every path's `with_antialiasing`).
     pub antialias: bool,
 }
 
@@ -61,8 +61,6 @@ pub struct Options {
 pub enum PrepareError {
     /// The core refused the scene or the size.
     Render(RenderError),
-    /// The path has no anti-aliasing.
-    NoAntialiasing(&'static str),
 }
 
 impl From<RenderError> for PrepareError {
@@ -75,11 +73,6 @@ impl std::fmt::Display for PrepareError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             PrepareError::Render(e) => e.fmt(f),
-            PrepareError::NoAntialiasing(path) => write!(
-                f,
-                "antialias: the {path} path has no anti-aliasing (the float paths scalar, \
-                 simd4 and simd8 have it)"
-            ),
         }
     }
 }

@@ -5,7 +5,7 @@
 //!
 //! | table | keys |
 //! |---|---|
-//! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear, optional `antialias = true` (analytic edges; float paths) |
+//! | `[image]` | `width`, `height` (pixels), `background` = `[r, g, b]` linear, optional `antialias = true` (analytic edges, every path) |
 //! | `[camera]` | `position`, `look_at`, `up` = `[x, y, z]`, `vfov` (degrees) |
 //! | `[[light]]` | `type = "distant"` with `direction`, or `type = "point"` with `position` and optionally `radius` (0: a point; more: a sphere light); both with `color`, `intensity` |
 //! | `[[sphere]]` | `center`, `radius`, `albedo`, `kd`, `ks`, `shininess`, optional `model` (below) |

@@ -478,3 +478,92 @@ fn distance(disc: i64, b: i64, c: u32, h: [i64; 2], shift: u32) -> Option<i64> {
     let q = q as i64;
     Some(if disc > 0 { -q } else { q })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The area of the unit pixel with `(x, y)·n < −dist` (inside), counted on a fine grid:
+    /// independent of the trapezoid formula.
+    fn counted(dist: f64, nx: f64, ny: f64) -> f64 {
+        const N: i32 = 400;
+        let mut inside = 0;
+        for i in 0..N {
+            for j in 0..N {
+                let x = (i as f64 + 0.5) / N as f64 - 0.5;
+                let y = (j as f64 + 0.5) / N as f64 - 0.5;
+                inside += (x * nx + y * ny + dist < 0.0) as i32;
+            }
+        }
+        inside as f64 / (N * N) as f64
+    }
+
+    #[test]
+    fn coverage_is_the_area_inside_a_straight_edge() {
+        let q16 = |v: f64| (v * 65536.0).round() as i64;
+        for degrees in [0.0f64, 10.0, 30.0, 45.0, 60.0, 80.0, 90.0, 135.0, 200.0] {
+            let (ny, nx) = degrees.to_radians().sin_cos();
+            for step in -8..=8 {
+                let dist = step as f64 * 0.1;
+                let got = square_coverage(q16(dist), q16(nx), q16(ny)) as f64 / 65536.0;
+                let want = counted(dist, nx, ny);
+                assert!(
+                    (got - want).abs() < 3e-3,
+                    "{degrees}°, dist {dist}: {got} against {want}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn the_second_edge_keeps_only_what_the_first_leaves() {
+        let edge = |dist: f64, nx: f64, ny: f64| {
+            let q16 = |v: f64| (v * 65536.0).round() as i64;
+            Edge {
+                sphere: 0,
+                inside: false,
+                coverage: square_coverage(q16(dist), q16(nx), q16(ny)),
+                dist: q16(dist),
+                normal: (q16(nx), q16(ny)),
+                pulled: [I16F48::ZERO; 3],
+            }
+        };
+        // Two edges on opposite sides (a gap between two spheres): nothing shared.
+        let (left, right) = (edge(0.25, -1.0, 0.0), edge(0.25, 1.0, 0.0));
+        let share = left.coverage_left(&right) as f64 / 65536.0;
+        let expected = 0.25 / (1.0 - 0.25);
+        assert!(
+            (share - expected).abs() < 0.01,
+            "{share} against {expected}"
+        );
+        // An edge over a parallel one it covers entirely: nothing left.
+        let (front, behind) = (edge(-0.25, 1.0, 0.0), edge(0.0, 1.0, 0.0));
+        assert_eq!(front.coverage_left(&behind), 0);
+        // Blends clamp each colour to 1 and weigh by the coverage.
+        let half = edge(0.0, 1.0, 0.0);
+        assert_eq!(half.coverage, 1 << 15);
+        assert_eq!(
+            half.mix([1 << 17, 0, 1 << 16], [0, 0, 1 << 16]),
+            [1 << 15, 0, 1 << 16]
+        );
+    }
+
+    #[test]
+    fn distances_have_the_outline_sign_and_stay_within_reach() {
+        // disc = 0: on the outline.
+        assert_eq!(distance(0, -(1 << 20), 1 << 30, [1 << 40, 0], 10), Some(0));
+        // Inside (disc > 0) is negative, outside positive, and beyond reach is none.
+        let d_in = distance(1 << 20, -(1 << 20), 1 << 30, [1 << 40, 0], 10).unwrap();
+        let d_out = distance(-(1 << 20), -(1 << 20), 1 << 30, [1 << 40, 0], 10).unwrap();
+        assert!(d_in < 0 && d_out > 0 && d_in == -d_out, "{d_in} {d_out}");
+        // disc 2⁻¹² units², b 16 units, 1/|u| = 1, |f·S| 2⁻¹⁴ units a pixel (54 fraction
+        // bits): −2⁻¹²/(2·16·2⁻¹⁴) = −⅛ pixel.
+        assert_eq!(d_in, -(1 << 13));
+        assert_eq!(
+            distance(1 << 40, -(1 << 20), 1 << 30, [1 << 40, 0], 10),
+            None
+        );
+        // No gradient: no distance.
+        assert_eq!(distance(0, -(1 << 20), 1 << 30, [0, 0], 10), None);
+    }
+}

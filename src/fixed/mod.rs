@@ -109,6 +109,7 @@
 //!
 //! `prepare` (scene → formats, the refusals) · `spans` (screen rectangles narrowed to each row's outline) · `row` (the
 //! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the stages) ·
+//! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
 //! `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
 //! `vector` (dot products and normalization) · `mul` (exact 32×32→64 products, leading
 //! zeros) · `exact` (`f32` as mantissa and exponent).
