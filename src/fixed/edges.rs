@@ -44,9 +44,9 @@
 //! spans: those are exact to a few columns, and a pixel outside every span is background
 //! whatever its distance to an outline.
 
-use super::kernel::ray;
+use super::kernel::{ray, Shaded};
 use super::mul::{leading_zeros, mul_ii, mul_iu, mul_uu};
-use super::prepare::PreparedFixed;
+use super::prepare::{FixedSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{dot_len_unit, dot_unit, each3, len_times_unit, length_sq, Unit, V3};
 use crate::runs::Span;
@@ -263,7 +263,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
             let (base, record) = match hit {
                 Some((k, sphere, t)) => {
-                    let s = self.shade_hit(k, sphere, d, t, false);
+                    let s = self.shade_edge(k, sphere, d, t);
                     (s.color, s.hit)
                 }
                 None => (self.background, Default::default()),
@@ -297,6 +297,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
+    /// The full-width kernel's stages after the hit (no hit record's shadow bits): one copy
+    /// out of line for the three shadings of an edge pixel, which would otherwise each hold
+    /// the whole lighting code in the firmware's flash.
+    #[inline(never)]
+    fn shade_edge(&self, k: usize, sphere: &FixedSphere, d: V3<Unit>, t: i64) -> Shaded {
+        self.shade_hit(k, sphere, d, t, false)
+    }
+
     /// The full-width shading along `d` of the spheres `filter` keeps, and the hit (sphere,
     /// distance); the background colour on a miss.
     #[inline(never)]
@@ -308,7 +316,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         spans: &[Option<Span>],
     ) -> ([u32; 3], Option<(usize, i64)>) {
         match self.hit(d, x, spans, |k| filter.keeps(k)) {
-            Some((k, sphere, t)) => (self.shade_hit(k, sphere, d, t, false).color, Some((k, t))),
+            Some((k, sphere, t)) => (self.shade_edge(k, sphere, d, t).color, Some((k, t))),
             None => (self.background, None),
         }
     }
@@ -331,7 +339,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             Some((_, _, t)) => t,
             None => (-dot_len_unit(sphere.eye_offset, d)).max(0),
         };
-        (self.shade_hit(k, sphere, d, t, false).color, Some((k, t)))
+        (self.shade_edge(k, sphere, d, t).color, Some((k, t)))
     }
 
     /// The front outline within reach of the centre of pixel `x` (centre ray `u`, unit
