@@ -33,11 +33,14 @@
 //!
 //! # Where it runs
 //!
-//! After a covered run is shaded as usual (by the narrow kernel or the full-width one), each
-//! of its pixels is tested: its centre ray's nearest hit and, for every sphere whose span
-//! covers it, the distance to that sphere's outline. A pixel with no outline within `1/√2`
-//! of its centre keeps the run's pixel bit for bit; one with an outline is shaded again by
-//! the full-width kernel and blended: the centre ray, the ray behind the edge's sphere or the
+//! After a covered run is shaded as usual (by the narrow kernel or the full-width one), the
+//! pixels of the run near an outline are tested (a band per sphere and row, two pixels up and
+//! down and two columns each side of the outline, from the spans' row conic: `spans`'
+//! `near_outline`; the others are left as they are): the centre ray's nearest hit and, for
+//! every sphere whose span covers the pixel, the distance to that sphere's outline. A pixel
+//! with no outline within `1/√2` of its centre keeps the run's pixel bit for bit; one with an
+//! outline is shaded again by the full-width kernel and blended: the centre ray, the ray
+//! behind the edge's sphere or the
 //! ray pulled inside its outline, and where a second outline crosses the pixel, one more
 //! (the table in `src/float/edges.rs`). The spans of an anti-aliased frame are the spheres'
 //! screen rectangles, two pixels wider than the spheres on each side, not the outlines' row
