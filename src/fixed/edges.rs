@@ -62,14 +62,20 @@ const ONE: i64 = 1 << 16;
 /// Points per side of the grid [`Edge::coverage_left`] counts overlaps on.
 const GRID: i64 = 8;
 
-/// The camera's pixel steps and axis as the edge stage needs them, once per row.
-pub(super) struct EdgeView {
+/// What the edge stage needs of a frame and a row, made once per row (not per run or per
+/// pixel): the camera's pixel steps and axis, each sphere's columns near its outline, and
+/// which spheres have an outline at all.
+pub(super) struct EdgeRow<const S: usize> {
     /// `2·step_x` and `2·step_y` (one pixel right, one pixel up) as 30-bit mantissas…
     steps: [V3<i32>; 2],
     /// …times `2^shift` in I16F48.
     shift: u32,
     /// The camera's forward axis, unit.
     forward: V3<Unit>,
+    /// Per sphere, the row's columns near its outline (see `spans`' `near_outline`).
+    near: heapless::Vec<[Option<Span>; 2], S>,
+    /// Per sphere, whether the eye is outside it (inside, it has no outline).
+    outside: heapless::Vec<bool, S>,
 }
 
 /// The spheres a shading behind an edge leaves out: the edge's, and the first edge's when
@@ -210,8 +216,8 @@ fn bits(v: u64) -> u32 {
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
-    /// The pixel steps and axis of this frame for [`Self::antialias_run`].
-    pub(super) fn edge_view(&self) -> EdgeView {
+    /// [`EdgeRow`] of row `y`, for [`Self::antialias_run`] on each of the row's runs.
+    pub(super) fn edge_row(&self, y: u32) -> EdgeRow<S> {
         let sx = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         let sy = self.step_y.map(|c| c.to_bits().saturating_mul(2));
         let largest = sx
@@ -222,27 +228,45 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             .unwrap_or(0);
         let shift = bits(largest).saturating_sub(30);
         let mantissa = |v: V3<i64>| each3(|i| (v[i] >> shift) as i32);
-        EdgeView {
+        let full = Span {
+            start: 0,
+            end: self.width,
+        };
+        let (mut near, mut outside) = (heapless::Vec::new(), heapless::Vec::new());
+        for s in &self.spheres {
+            let bands = match s.bounds {
+                Some(b) if self.use_spans => b.near_outline(y, self.height),
+                Some(_) => [Some(full), None],
+                None => [None, None],
+            };
+            let eye_out =
+                length_sq(s.eye_offset.map(|v| v.to_bits() as i64)) > s.radius_sq.to_bits();
+            // Same capacity as the sphere list: cannot fail.
+            let pushed = near.push(bands).is_ok() && outside.push(eye_out).is_ok();
+            debug_assert!(pushed, "more bands than spheres");
+        }
+        EdgeRow {
             steps: [mantissa(sx), mantissa(sy)],
             shift,
             // I16F48 to I2F30: the axis is unit, so it fits.
             forward: each3(|i| Unit::from_bits((self.forward[i].to_bits() >> 18) as i32)),
+            near,
+            outside,
         }
     }
 
     /// Anti-aliases the shaded run `run_pixels` from column `start` of row `y`, whose spans
-    /// are `spans` and whose columns near each sphere's outline are `near` (see the module
-    /// docs): pixels with an outline within reach are shaded again and blended, and
-    /// `encode` turns their colour (and the centre ray's hit record) into the pixel.
+    /// are `spans` and whose [`EdgeRow`] is `view` (see the module docs): pixels with an
+    /// outline within reach are shaded again and blended, and `encode` turns their colour
+    /// (and the centre ray's hit record) into the pixel.
     pub(super) fn antialias_run<P>(
         &self,
         (y, spans): (u32, &[Option<Span>]),
-        near: &[[Option<Span>; 2]],
+        view: &EdgeRow<S>,
         start: u32,
         run_pixels: &mut [P],
         encode: impl Fn([u32; 3], crate::pixel::HitRecord, u32) -> P,
     ) {
-        let view = self.edge_view();
         // The centre rays step by one addition per pixel, exactly (as in the row driver).
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         let mut next = self.direction(start, y);
@@ -252,7 +276,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 *c = I16F48::from_bits(c.to_bits().saturating_add(a));
             }
             let within = |s: &Option<Span>| s.is_some_and(|s| s.start <= column && column < s.end);
-            if !near.iter().flatten().any(within) {
+            if !view.near.iter().flatten().any(within) {
                 continue;
             }
             let Some(d) = ray(u) else {
@@ -260,7 +284,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             };
             let hit = self.hit(d, column, spans, |_| true);
             let centre = hit.map(|(k, _, t)| (k, t));
-            let Some(first) = self.edge(&view, (u, d), centre, None, column, spans) else {
+            let Some(first) = self.edge(view, (u, d), centre, None, column, spans) else {
                 continue;
             };
 
@@ -283,7 +307,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 (second, base, centre)
             };
             let behind =
-                match self.edge(&view, (u, d), behind_hit, Some(first.sphere), column, spans) {
+                match self.edge(view, (u, d), behind_hit, Some(first.sphere), column, spans) {
                     Some(mut edge) => {
                         edge.coverage = first.coverage_left(&edge);
                         let (third, _) = if edge.inside {
@@ -351,7 +375,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[allow(clippy::too_many_arguments)]
     fn edge(
         &self,
-        view: &EdgeView,
+        view: &EdgeRow<S>,
         (u, d): (V3<I16F48>, V3<Unit>),
         hit: Option<(usize, i64)>,
         exclude: Option<usize>,
@@ -369,7 +393,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let oc = s.eye_offset;
             let r2 = s.radius_sq.to_bits();
             // The eye inside or on the sphere: no outline.
-            if length_sq(oc.map(|v| v.to_bits() as i64)) <= r2 {
+            if !view.outside.get(k).copied().unwrap_or(false) {
                 continue;
             }
             let b = dot_len_unit(oc, d);

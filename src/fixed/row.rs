@@ -8,6 +8,8 @@
 //! rounding accumulates. Rows, pixels and slices are only reached through `get_mut` and
 //! iterators, and every index is checked, so nothing here can panic.
 
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+use super::edges::EdgeRow;
 #[cfg(feature = "full-width")]
 use super::kernel::{ray, Shaded};
 #[cfg(feature = "full-width")]
@@ -258,11 +260,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         });
         #[cfg(feature = "full-width")]
         let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
+        // The edge stage's row state, once per row for all its runs.
+        #[cfg(all(feature = "antialias", feature = "full-width"))]
+        let edges = self.antialias.then(|| self.edge_row(y));
         walk_runs(out, x as usize, &runs, &background, |start, run_pixels| {
             let row = (y, &spans[..], encoding, &background);
             if self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels) {
                 #[cfg(all(feature = "antialias", feature = "full-width"))]
-                self.antialiased::<P, PLAIN>((y, &spans[..], encoding), start as u32, run_pixels);
+                self.antialiased::<P, PLAIN>(
+                    (y, &spans[..], encoding),
+                    &edges,
+                    start as u32,
+                    run_pixels,
+                );
                 return;
             }
             // Without the full-width kernel every prepared frame is a narrow one.
@@ -284,7 +294,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 }
             }
             #[cfg(all(feature = "antialias", feature = "full-width"))]
-            self.antialiased::<P, PLAIN>((y, &spans[..], encoding), start as u32, run_pixels);
+            self.antialiased::<P, PLAIN>(
+                (y, &spans[..], encoding),
+                &edges,
+                start as u32,
+                run_pixels,
+            );
         });
     }
 
@@ -294,29 +309,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     fn antialiased<P: Pixel, const PLAIN: bool>(
         &self,
         (y, spans, encoding): (u32, &[Option<Span>], Encoding),
+        view: &Option<EdgeRow<S>>,
         start: u32,
         run_pixels: &mut [P],
     ) {
-        if !self.antialias {
+        let Some(view) = view else {
             return;
-        }
-        // The columns near each sphere's outline: only their pixels are tested.
-        let mut near = heapless::Vec::<[Option<Span>; 2], S>::new();
-        for s in &self.spheres {
-            let full = Span {
-                start: 0,
-                end: self.width,
-            };
-            let bands = match s.bounds {
-                Some(b) if self.use_spans => b.near_outline(y, self.height),
-                Some(_) => [Some(full), None],
-                None => [None, None],
-            };
-            // Same capacity as the sphere list: cannot fail.
-            let pushed = near.push(bands);
-            debug_assert!(pushed.is_ok(), "more bands than spheres");
-        }
-        self.antialias_run((y, spans), &near, start, run_pixels, |color, hit, x| {
+        };
+        self.antialias_run((y, spans), view, start, run_pixels, |color, hit, x| {
             encode::<P, PLAIN>(color, hit, encoding, x, y)
         });
     }
