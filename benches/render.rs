@@ -14,7 +14,7 @@
 //!   too (`fixed`).
 //! - `frame/area-lights`: the area-lights preset at its size, under its sphere light
 //!   (`sphere-light`) and under a point light at the same place (`point-light`): the cost of
-//!   soft shadows and widened lobes (float paths only: the fixed path has no sphere lights).
+//!   soft shadows and widened lobes, on the float paths and the fixed path (`fixed`).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use shadeline::*;
@@ -233,6 +233,13 @@ fn benches(c: &mut Criterion) {
             AREA_LIGHTS_SIZE,
             id,
             (true, false),
+        );
+        bench_fixed(
+            c,
+            "frame/area-lights",
+            &area_lights(radius).unwrap(),
+            AREA_LIGHTS_SIZE,
+            id,
         );
     }
 }

@@ -347,7 +347,8 @@ pub const AREA_LIGHT_RADIUS: f32 = 1.5;
 /// numbers are in `scenes/area-lights.toml`.
 ///
 /// Without the feature `area-lights` a radius above 0 renders on no fast path (they refuse
-/// it with [`RenderError::SphereLight`](crate::RenderError)); the `f64` reference renders it.
+/// it with [`RenderError::SphereLight`](crate::RenderError)), and the fixed path needs
+/// `full-width` too; the `f64` reference renders it.
 pub fn area_lights(light_radius: f32) -> Result<Scene<5, 1>, SceneError> {
     let camera = Camera {
         position: Vec3::new(0.0, 2.5, 10.0),

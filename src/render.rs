@@ -79,9 +79,10 @@ pub enum RenderError {
         /// The field's name, as spelled in the scene file.
         field: &'static str,
     },
-    /// A point light has a radius (a sphere light): the fixed path renders point lights of
-    /// radius 0 only, and so do the float paths without the crate feature `area-lights`;
-    /// the `f64` [`reference`](crate::reference) renders sphere lights.
+    /// A point light has a radius (a sphere light), and this build renders point lights of
+    /// radius 0 only on this path: the float paths without the crate feature `area-lights`,
+    /// the fixed path without `area-lights` and `full-width`. The `f64`
+    /// [`reference`](crate::reference) renders sphere lights.
     SphereLight {
         /// The light's index.
         light: usize,

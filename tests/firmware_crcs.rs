@@ -160,6 +160,37 @@ fn area_lights_crcs_and_covered_count_match_the_firmware_constants() {
     assert_ne!(sphere, point, "the sphere light changes the frame");
 }
 
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+#[test]
+fn fixed_area_lights_crcs_match_the_firmware_constants() {
+    let (w, h) = (expected::AREA_LIGHTS_WIDTH, expected::AREA_LIGHTS_HEIGHT);
+    let [sphere, point] = [shadeline::AREA_LIGHT_RADIUS, 0.0].map(|radius| {
+        let scene = shadeline::area_lights(radius).expect("built-in scene is valid");
+        let path = PreparedFixed::<5, 1>::new(&scene, w, h).unwrap();
+        (rgb565_crc32(&frame(&path)), covered(&path))
+    });
+    assert_eq!(
+        (sphere, point),
+        (
+            (
+                expected::AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
+                expected::AREA_LIGHTS_COVERED
+            ),
+            (
+                expected::AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+                expected::AREA_LIGHTS_COVERED
+            ),
+        ),
+        "host fixed area-lights CRCs (sphere light {:#010x}, point light {:#010x}) and covered \
+         counts ({}, {}): update firmware/expected.rs",
+        sphere.0,
+        point.0,
+        sphere.1,
+        point.1
+    );
+    assert_ne!(sphere.0, point.0, "the sphere light changes the frame");
+}
+
 #[test]
 fn per_model_crcs_and_covered_counts_match_the_firmware_constants() {
     let (w, h) = (expected::WIDTH, expected::HEIGHT);

@@ -18,8 +18,7 @@
 //! counterparts (`scenes/microfacets.toml`, 960×480), and `--preset full-moon` is a Lambert
 //! and an Oren–Nayar sphere lit from behind the viewer (`scenes/full-moon.toml`, 640×320);
 //! `--preset area-lights` is four spheres of growing shininess under one sphere light
-//! (`scenes/area-lights.toml`, 640×320), which the fixed path refuses (it renders point
-//! lights of radius 0 only). Without a scene file or preset all three use the built-in exponent series (the numbers of
+//! (`scenes/area-lights.toml`, 640×320). Without a scene file or preset all three use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file is reported as one line
 //! `FILE:LINE:COL: error: …` on stderr, with exit code 2; so is a bad size or a frame too
 //! large for the memory, as one `error: …` line (the message names the size; buffers are
@@ -340,8 +339,8 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     let mut images = Vec::new();
     let mut refusals = Vec::new();
     for path in PATHS {
-        // A path that does not render something the scene holds (the fixed path and a
-        // sphere light) is reported and left out, not the end of the comparison.
+        // A path that does not render something the scene holds (a shadeline built without
+        // a feature the scene needs) is reported and left out, not the end of the comparison.
         if let Err(PrepareError::Render(e)) = (path.prepare)(scene, w, h, sharp) {
             refusals.push(format!("{:<8} refused: {e}", path.name));
             images.push(vec![Rgb888::default(); w as usize * h as usize]);

@@ -390,7 +390,7 @@ fn an_unknown_path_is_refused_naming_it() {
 }
 
 #[test]
-fn antialias_smooths_the_float_paths_and_is_refused_on_the_fixed_path() {
+fn antialias_smooths_every_path() {
     let dir = temp_dir("antialias");
     let size = ["--width", "96", "--height", "72"];
     let render = |extra: &[&str], out: &str| {

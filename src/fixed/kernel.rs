@@ -14,6 +14,11 @@
 //! | `specular` | per light: `Σ vis·I·lobe`, lobe `= (1 − h)^n`, `h = ½|R − V|²` or `½|N − H|²` | U3F61 → U1F31 → U16F16 |
 //! | `combine` | `kd·albedo·diffuse + ks·specular`, saturating | U16F16 |
 //!
+//! A sphere light (features `area-lights` and `full-width`) takes the float kernel's stages
+//! for it, in integers: `sphere_incoming` (the representative point's direction and the
+//! light's cap) and `soft_shadow` (the uncovered share of the cap), with `specular` and
+//! `normalized` given the light's diffuse cosine and spread; the formulas are in `area`.
+//!
 //! (The spans stage is the row driver's, in [`super::spans`] and [`super::row`]; quantizing
 //! to a pixel format is the row driver's `encode` step.) The normalized models' `diffuse`
 //! and `specular` are one function, `normalized`, since both need `N·L` and Fresnel's `F`.
@@ -26,6 +31,8 @@
 
 #[cfg(feature = "full-width")]
 use super::exact::shift_saturating;
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+use super::exact::Exact;
 #[cfg(all(feature = "models", feature = "full-width"))]
 use super::mul::leading_zeros;
 use super::mul::{mul_ii, mul_iu, mul_uu};
@@ -63,6 +70,27 @@ struct Incoming {
     arriving: [u32; 3],
     /// Distance to a point light (raw I16F16); `None` for a distant light.
     reach: Option<i64>,
+}
+
+/// A sphere light as seen from one surface point (see `sphere_incoming`).
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+struct SphereSeen {
+    /// The representative point's direction, the colour arriving from the centre, no reach
+    /// (the soft shadow has its own test).
+    incoming: Incoming,
+    /// Unit vector toward the centre, `A`.
+    axis: V3<Unit>,
+    /// Squared distance to the centre, raw I32F32.
+    dist2: i64,
+    /// `sin α = R/d`, F30.
+    sin_a: u32,
+    /// The chord of the light's cap, `2 sin(α/2)` (F30): its radius in the equal-area
+    /// projection.
+    rho: u32,
+    /// `N·A`, F30.
+    cos_axis: i64,
+    /// The diffuse cosine, `area::horizon_cosine`, F30.
+    diffuse_cos: u32,
 }
 
 /// The unit direction of the unnormalized camera-plane direction `dir` (I16F48).
@@ -194,6 +222,42 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let mut specular = [0u32; 3];
         let mut shadowed = 0u32;
         for (light_index, light) in self.lights.iter().enumerate() {
+            #[cfg(feature = "area-lights")]
+            if let FixedLight::Sphere {
+                position,
+                power,
+                radius,
+            } = *light
+            {
+                let lit = self
+                    .sphere_incoming(position, power, radius, p, n, d)
+                    .and_then(|seen| {
+                        let (vis_diffuse, vis_specular) =
+                            self.soft_shadow(index, shadow_origin, &seen);
+                        (vis_specular > 0).then_some((seen, vis_diffuse, vis_specular))
+                    });
+                let Some((seen, vis_diffuse, vis_specular)) = lit else {
+                    if record_hits && light_index < 32 {
+                        shadowed |= 1 << light_index;
+                    }
+                    continue;
+                };
+                let area = Some(Area {
+                    diffuse_cos: seen.diffuse_cos,
+                    spread: seen.sin_a,
+                });
+                let (dif, spec) = if sphere.normalized {
+                    self.normalized(sphere, n, d, &seen.incoming, area)
+                } else {
+                    (
+                        times(seen.incoming.arriving, seen.diffuse_cos),
+                        self.specular(sphere, n, d, &seen.incoming, area),
+                    )
+                };
+                add(&mut diffuse, times(dif, vis_diffuse));
+                add(&mut specular, times(spec, vis_specular));
+                continue;
+            }
             let incoming = self.incoming(light, p);
             let casters = self.casters(index, light_index);
             if self.shadow(index, shadow_origin, &incoming, casters) {
@@ -203,11 +267,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 continue;
             }
             let (dif, spec) = if sphere.normalized {
-                self.normalized(sphere, n, d, &incoming)
+                self.normalized(sphere, n, d, &incoming, None)
             } else {
                 (
                     self.diffuse(n, &incoming),
-                    self.specular(sphere, n, d, &incoming),
+                    self.specular(sphere, n, d, &incoming, None),
                 )
             };
             add(&mut diffuse, dif);
@@ -226,6 +290,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 arriving: arriving.map(U16F16::to_bits),
                 reach: None,
             },
+            // Shaded by `sphere_incoming`, never here; as the point at its centre otherwise.
+            #[cfg(feature = "area-lights")]
+            FixedLight::Sphere {
+                position, power, ..
+            } => self.incoming(&FixedLight::Point { position, power }, p),
             FixedLight::Point { position, power } => {
                 // Both points lie within ±2¹³ units: the difference fits I16F16.
                 let lv = each3(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
@@ -254,6 +323,124 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 }
             }
         }
+    }
+
+    /// `incoming` for a sphere light of `radius` at `position` with `power`, seen from the
+    /// surface point `p` with normal `n` along the view ray `d`: the direction toward the
+    /// representative point (the point of the light's sphere closest to the reflected ray
+    /// `R = 2(N·V)N − V`: the centre moved toward the ray by up to the radius), the colour
+    /// arriving from the centre, and the cap's constants. `None` at the light's centre,
+    /// which validation keeps clear of every sphere.
+    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    #[inline(always)]
+    fn sphere_incoming(
+        &self,
+        position: V3<Len>,
+        power: V3<Exact>,
+        radius: Len,
+        p: V3<Len>,
+        n: V3<Unit>,
+        d: V3<Unit>,
+    ) -> Option<SphereSeen> {
+        use super::area::{chord, horizon_cosine, ONE};
+        // Both points lie within ±2¹³ units: the difference fits I16F16.
+        let lv = each3(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
+        let dist2 = length_sq(lv).max(0);
+        let (y, shift) = inv_sqrt(dist2 as u64)?;
+        let unit = |v: i64, y: u32, shift: u32| {
+            let u = mul_iu(to_len(v).to_bits(), y) >> (shift - 30).min(63);
+            Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
+        };
+        let axis = lv.map(|c| unit(c, y, shift));
+        let r = radius.to_bits().max(0) as u32;
+        let sin_a = (mul_uu(r, y) >> (shift - 30).min(63)).min(ONE as u64) as u32;
+        let cos_axis = dot_unit(n, axis);
+        // R = 2(N·V)N − V with V = −d, each component within ±1 (F30).
+        let k = (-dot_unit(n, d)).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+        let reflected = each3(|i| {
+            let c = (mul_ii(k, n[i].to_bits()) >> 29) + d[i].to_bits() as i64;
+            Unit::from_bits(c.clamp(-(1 << 30), 1 << 30) as i32)
+        });
+        let along = dot_len_unit(lv.map(to_len), reflected);
+        let to_ray = each3(|i| len_times_unit(along, reflected[i]) - lv[i]);
+        let to_ray2 = length_sq(to_ray);
+        let r2 = mul_uu(r, r) as i64;
+        let rep = match inv_sqrt(to_ray2.max(0) as u64) {
+            Some((y2, shift2)) if r2 < to_ray2 => {
+                each3(|i| lv[i] + len_times_unit(r as i64, unit(to_ray[i], y2, shift2)))
+            }
+            _ => each3(|i| lv[i] + to_ray[i]),
+        };
+        let to_light = normalize(rep).unwrap_or([Unit::ZERO; 3]);
+        // 1/d² in units = y²·2^(63 − 2·shift) with y² in U1F31; arriving in U16F16.
+        let y2 = (mul_uu(y, y) >> 31) as u32;
+        let e = 79 - 2 * shift as i32;
+        let arriving = power.map(|pw| shift_saturating(mul_uu(pw.mantissa, y2), pw.exponent + e));
+        Some(SphereSeen {
+            incoming: Incoming {
+                to_light,
+                arriving,
+                reach: None,
+            },
+            axis,
+            dist2,
+            sin_a,
+            rho: chord(sin_a),
+            cos_axis,
+            diffuse_cos: horizon_cosine(cos_axis, sin_a),
+        })
+    }
+
+    /// `shadow` for a sphere light: the share of the light's cap that the other spheres
+    /// leave uncovered, seen from `origin` (`P + ε·N` on sphere `index`), and that times the
+    /// share above the horizon: `(diffuse, specular)` visibility, F30. The float kernel's
+    /// `soft_shadow` in integers: each sphere nearer than the light's centre whose cap
+    /// overlaps the light's multiplies the visibility by `1 −` its `area::covered` share, a
+    /// point inside a sphere sees none of the light, and the own sphere is the horizon.
+    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    #[inline(always)]
+    fn soft_shadow(&self, index: usize, origin: V3<Len>, light: &SphereSeen) -> (u32, u32) {
+        use super::area::{above_horizon, chord, covered, ONE};
+        let horizon = above_horizon(light.cos_axis, light.sin_a);
+        let mut visible = ONE;
+        for (k, s) in self.spheres.iter().enumerate() {
+            if k == index {
+                continue;
+            }
+            let to_center = each3(|i| s.center[i].to_bits() as i64 - origin[i].to_bits() as i64);
+            let d2 = length_sq(to_center);
+            if d2 <= s.radius_sq.to_bits() {
+                return (0, 0);
+            }
+            if d2 >= light.dist2 {
+                continue;
+            }
+            let Some((y, shift)) = inv_sqrt(d2 as u64) else {
+                continue;
+            };
+            let r = s.radius.to_bits().max(0) as u32;
+            let sin = (mul_uu(r, y) >> (shift - 30).min(63)).min(ONE as u64) as u32;
+            let rho = chord(sin);
+            // |B − A|² in F60 from the F30 components, B the unit vector toward the centre.
+            let gap2 = each3(|i| {
+                let b = mul_iu(to_len(to_center[i]).to_bits(), y) >> (shift - 30).min(63);
+                let g = (b - light.axis[i].to_bits() as i64)
+                    .unsigned_abs()
+                    .min(u32::MAX as u64);
+                mul_uu(g as u32, g as u32)
+            });
+            let delta = sqrt(gap2[0].saturating_add(gap2[1]).saturating_add(gap2[2]))
+                .min(u32::MAX as u64) as u32;
+            if delta as u64 >= light.rho as u64 + rho as u64 {
+                continue;
+            }
+            let share = covered(light.rho, rho, delta);
+            visible = (mul_uu(visible, ONE - share.min(ONE)) >> 30) as u32;
+            if (mul_uu(visible, horizon) >> 30) == 0 {
+                break;
+            }
+        }
+        (visible, (mul_uu(visible, horizon) >> 30) as u32)
     }
 
     /// The spheres that can block light `light` from reaching sphere `index` (bit `k` for
@@ -310,10 +497,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             .map(|i| u32::try_from(mul_uu(i, n_dot_l) >> 30).unwrap_or(u32::MAX))
     }
 
-    /// `I·lobe` per channel, U16F16, with the lobe's `h = 1 − cos` from a sum of squares.
+    /// `I·lobe` per channel, U16F16, with the lobe's `h = 1 − cos` from a sum of squares
+    /// (under a sphere light, times its energy factor).
     #[cfg(feature = "full-width")]
     #[inline(always)]
-    fn specular(&self, s: &FixedSphere, n: V3<Unit>, d: V3<Unit>, incoming: &Incoming) -> [u32; 3] {
+    fn specular(
+        &self,
+        s: &FixedSphere,
+        n: V3<Unit>,
+        d: V3<Unit>,
+        incoming: &Incoming,
+        area: Option<Area>,
+    ) -> [u32; 3] {
         let l = incoming.to_light;
         if !s.blinn && l == [Unit::ZERO; 3] {
             return [0; 3];
@@ -322,7 +517,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(h) = lobe_h(s.blinn, n, l, d, half) else {
             return [0; 3];
         };
-        let lobe = lobe(h, s.shininess); // U1F31
+        let lobe = widened(lobe(h, s.shininess), s, 0, area); // U1F31
         incoming
             .arriving
             .map(|i| u32::try_from(mul_uu(i, lobe) >> 31).unwrap_or(u32::MAX))
@@ -340,11 +535,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         n: V3<Unit>,
         d: V3<Unit>,
         incoming: &Incoming,
+        area: Option<Area>,
     ) -> ([u32; 3], [u32; 3]) {
         const ONE: u32 = 1 << 30;
         let l = incoming.to_light;
         let n_dot_l = dot_unit(n, l).clamp(0, ONE as i64) as u32; // U2F30
-        if n_dot_l == 0 || l == [Unit::ZERO; 3] {
+                                                                  // A sphere light's diffuse term has its own cosine, whatever N·L of the
+                                                                  // representative point is.
+        if (n_dot_l == 0 || l == [Unit::ZERO; 3]) && area.is_none() {
             return ([0; 3], [0; 3]);
         }
         // H is needed by Blinn-Phong lobes, by Fresnel and by GGX.
@@ -356,12 +554,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let mut sum = 0u32;
         if let Some(h) = lobe_h(s.blinn, n, l, d, half).filter(|_| !ggx) {
             let exponents = [s.shininess, s.more_shininess[0], s.more_shininess[1]];
-            for (w, e) in s.weight.iter().zip(exponents) {
+            for (k, (w, e)) in s.weight.iter().zip(exponents).enumerate() {
                 if w.mantissa == 0 {
                     continue;
                 }
                 // lobe·w as U16F16: (lobe·2⁻³¹)·(m·2^e)·2¹⁶.
-                let term = shift_saturating(mul_uu(lobe(h, e), w.mantissa), w.exponent - 15);
+                let lobe = widened(lobe(h, e), s, k, area);
+                let term = shift_saturating(mul_uu(lobe, w.mantissa), w.exponent - 15);
                 sum = sum.saturating_add(term);
             }
         }
@@ -385,16 +584,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             ONE
         };
         // The diffuse lobe times N·L: Lambert's N·L, or Oren–Nayar's (below 1.45).
+        let cos_diffuse = area.map_or(n_dot_l, |a| a.diffuse_cos);
         #[cfg(feature = "models")]
         let n_dot_l_diffuse = match s.oren_nayar {
-            Some([a, b]) => oren_nayar(a, b, n_dot_l, n, l, d),
-            None => n_dot_l,
+            Some([a, b]) => oren_nayar(a, b, cos_diffuse, n, l, d),
+            None => cos_diffuse,
         };
         #[cfg(not(feature = "models"))]
-        let n_dot_l_diffuse = n_dot_l;
+        let n_dot_l_diffuse = cos_diffuse;
         let lit = (mul_uu(n_dot_l_diffuse, diffuse_scale) >> 30) as u32; // U2F30
                                                                          // U16F16: Σ wₖcₖ·lobeₖ·(N·L) (≤ sum), or GGX's ks·D·V₂·(N·L).
-        let spec = ggx_specular(s, n_dot_l, n, d, half)
+        let spec = ggx_specular(s, n_dot_l, n, d, half, area)
             .unwrap_or_else(|| (mul_uu(sum, n_dot_l) >> 30) as u32);
         let diffuse = incoming
             .arriving
@@ -513,15 +713,23 @@ fn ggx_specular(
     n: V3<Unit>,
     d: V3<Unit>,
     half: Option<V3<Unit>>,
+    area: Option<Area>,
 ) -> Option<u32> {
     #[cfg(feature = "models")]
     {
         let g = s.ggx.as_ref()?;
-        Some(ggx_term(g, n_dot_l, n, d, half))
+        let term = ggx_term(g, n_dot_l, n, d, half);
+        #[cfg(feature = "area-lights")]
+        if let Some(a) = area {
+            let w = super::area::ggx_widening(g.alpha, g.alpha2, a.spread);
+            return Some((mul_uu(term, w) >> 30) as u32);
+        }
+        let _ = area;
+        Some(term)
     }
     #[cfg(not(feature = "models"))]
     {
-        let _ = (s, n_dot_l, n, d, half);
+        let _ = (s, n_dot_l, n, d, half, area);
         None
     }
 }
@@ -602,6 +810,37 @@ impl Wide {
     fn mul(self, o: Wide) -> Wide {
         Wide::new(mul_uu(self.m, o.m), self.e + o.e)
     }
+}
+
+/// What a sphere light changes in `specular` and `normalized` (see `area`): the diffuse
+/// cosine (F30) replaces `max(0, N·L)` in the diffuse term, and every lobe is widened by
+/// the light's `spread = sin α` (F30). Without the `area-lights` feature it is never built.
+#[cfg(feature = "full-width")]
+#[derive(Clone, Copy)]
+#[cfg_attr(not(feature = "area-lights"), allow(dead_code))]
+pub(super) struct Area {
+    diffuse_cos: u32,
+    spread: u32,
+}
+
+/// A lobe (U1F31) times lobe `k`'s energy factor under a sphere light, if `area` is one.
+#[cfg(feature = "full-width")]
+#[inline(always)]
+fn widened(lobe: u32, s: &FixedSphere, k: usize, area: Option<Area>) -> u32 {
+    #[cfg(feature = "area-lights")]
+    if let (Some(a), Some(&constants)) = (area, s.widening.get(k)) {
+        let w = super::area::lobe_widening(a.spread, constants);
+        return (mul_uu(lobe, w) >> 30) as u32;
+    }
+    let _ = (s, k, area);
+    lobe
+}
+
+/// `v·f` per channel for an F30 factor `f ≤ 1`.
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+#[inline(always)]
+fn times(v: [u32; 3], f: u32) -> [u32; 3] {
+    v.map(|c| (mul_uu(c, f) >> 30).min(u32::MAX as u64) as u32)
 }
 
 /// `acc += v` per channel, saturating.

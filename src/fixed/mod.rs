@@ -100,20 +100,38 @@
 //! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against
 //! the sphere itself (three products when the ray leaves its lit side) and each sphere the
 //! prepare found can cast a shadow on it ([`Scene::shadow_casters`](crate::Scene)), and
-//! about twelve products for the lobe. No division per pixel except Oren–Nayar's ratio. On ARMv6-M (Cortex-M0,
+//! about twelve products for the lobe. No division per pixel except Oren–Nayar's ratio and
+//! a sphere light's closed forms (below). On ARMv6-M (Cortex-M0,
 //! RP2040), whose multiplier is 32×32→32 and which has no `CLZ`, `mul` builds each product
 //! from four 16×16 `MULS` inline and counts leading zeros by a binary search, instead of
 //! calls to `__aeabi_lmul` and `__clzsi2`.
+//!
+//! # Sphere lights
+//!
+//! With the features `area-lights` and `full-width`, the full-width kernel shades a point
+//! light with a `radius` by the float paths' closed forms (`src/float/area.rs`) in integers
+//! (`area`): the representative point's direction from the reflected ray, the sphere's
+//! irradiance for the diffuse term, each lobe's energy factor from two per-lobe constants the
+//! prepare computes, and the soft shadow as the product of every nearer sphere's uncovered
+//! share of the light's cap. Cosines, sines, chords and shares are 30-bit fractions, each
+//! ratio is one integer division (about a dozen per lit pixel and light, more where an
+//! occluder overlaps the light), and the results are the same bits on every target. Against
+//! the scalar path: at most 1 level on five spheres under lights of 0.05 to 1 times their
+//! radius, and 99.99% of pixels within 2 levels on random scenes of every model
+//! (`tests/sphere_lights.rs`). A frame with a sphere light never takes the narrow kernel.
 //!
 //! # Modules
 //!
 //! `prepare` (scene → formats, the refusals) · `spans` (screen rectangles narrowed to each row's outline) · `row` (the
 //! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the stages) ·
 //! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
+//! `area` (sphere lights' closed forms, features `area-lights` and `full-width`) ·
 //! `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
 //! `vector` (dot products and normalization) · `mul` (exact 32×32→64 products, leading
 //! zeros) · `exact` (`f32` as mantissa and exponent).
 
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+mod area;
 mod convert;
 #[cfg(all(feature = "antialias", feature = "full-width"))]
 mod edges;

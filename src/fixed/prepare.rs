@@ -385,6 +385,14 @@ pub(crate) struct FixedSphere {
     /// GGX's constants, if the specular lobe is GGX.
     #[cfg(feature = "models")]
     pub ggx: Option<FixedGgx>,
+    /// The scaled radius, for the soft shadows of sphere lights.
+    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    pub radius: Len,
+    /// Per lobe (`shininess`, then `more_shininess`), the constants of its energy factor
+    /// under a sphere light (`area::lobe_widening`): `√(πn′/2)` in U16F16 and `n′/2` in
+    /// U20F12, saturating.
+    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    pub widening: [[u32; 2]; LOBES],
 }
 
 /// A GGX sphere's constants (`α = roughness²`).
@@ -398,6 +406,9 @@ pub(crate) struct FixedGgx {
     pub one_minus_alpha2: u32,
     /// `ks·α²/(2π)`, the `f32` value exactly.
     pub scale: Exact,
+    /// `α`, U1F31, for the widening under a sphere light.
+    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    pub alpha: u32,
 }
 
 /// A light's per-frame constants.
@@ -412,6 +423,14 @@ pub(crate) enum FixedLight {
     /// is `power/d²` in scaled units. Only the full-width kernel reads them.
     #[cfg_attr(not(feature = "full-width"), allow(dead_code))]
     Point { position: V3<Len>, power: V3<Exact> },
+    /// A sphere light (a point light with a radius, see `area`): `position` and `power` as
+    /// for `Point`, and its scaled radius.
+    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    Sphere {
+        position: V3<Len>,
+        power: V3<Exact>,
+        radius: Len,
+    },
 }
 
 /// A scene prepared for the fixed-point path at one size: integers only per row and pixel.
@@ -449,6 +468,15 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     /// Whether silhouettes are anti-aliased ([`PreparedFixed::with_antialiasing`]).
     #[cfg(all(feature = "antialias", feature = "full-width"))]
     pub(crate) antialias: bool,
+}
+
+/// A lobe's constants for `area::lobe_widening`, from its exponent `n` (`n′ = n`, or `n/4`
+/// for Blinn-Phong): `[√(πn′/2)` in U16F16, `n′/2` in U20F12`]`, saturating (0 for `n = 0`).
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+fn widening(n: f32, blinn: bool) -> [u32; 2] {
+    let n = if blinn { n * 0.25 } else { n };
+    let a = libm::sqrtf(core::f32::consts::FRAC_PI_2 * n);
+    [fixed_bits_u32(a, 16), fixed_bits_u32(0.5 * n, 12)].map(|b| b.unwrap_or(u32::MAX))
 }
 
 fn out_of_range(item: Item, field: &'static str) -> RenderError {
@@ -599,6 +627,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return Err(RenderError::BadSize { width, height });
         }
+        #[cfg(not(all(feature = "area-lights", feature = "full-width")))]
         if let Some(light) = scene.sphere_light() {
             return Err(RenderError::SphereLight { light });
         }
@@ -689,8 +718,21 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                         scale: Exact::from_f32(
                             params.weight[0] * params.alpha2 / (2.0 * core::f32::consts::PI),
                         ),
+                        #[cfg(all(feature = "area-lights", feature = "full-width"))]
+                        alpha: u1f31(libm::sqrtf(params.alpha2)),
                     }
                 }),
+                #[cfg(all(feature = "area-lights", feature = "full-width"))]
+                radius,
+                #[cfg(all(feature = "area-lights", feature = "full-width"))]
+                widening: {
+                    let exponents = [
+                        m.shininess,
+                        params.more_shininess[0],
+                        params.more_shininess[1],
+                    ];
+                    exponents.map(|e| widening(e, params.blinn > 0.0))
+                },
             };
             // Same capacity as the scene: cannot fail.
             let pushed = self.spheres.push(sphere);
@@ -740,7 +782,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     position,
                     color,
                     intensity,
-                    ..
+                    radius,
                 } => {
                     let power = Vec3::new(color.r, color.g, color.b)
                         .scale(intensity / (4.0 * core::f32::consts::PI))
@@ -749,10 +791,24 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     if !power.iter().all(|p| p.is_finite()) {
                         return Err(out_of_range(item, "intensity"));
                     }
-                    FixedLight::Point {
-                        position: to_len(position, scale, item, "position")?,
-                        power: power.map(Exact::from_f32),
+                    let position = to_len(position, scale, item, "position")?;
+                    let power = power.map(Exact::from_f32);
+                    #[cfg(feature = "area-lights")]
+                    if radius > 0.0 {
+                        let radius = fixed_bits_i32(radius * scale, 16)
+                            .filter(|r| *r > 0)
+                            .map(Len::from_bits)
+                            .ok_or(out_of_range(item, "radius"))?;
+                        let pushed = self.lights.push(FixedLight::Sphere {
+                            position,
+                            power,
+                            radius,
+                        });
+                        debug_assert!(pushed.is_ok(), "light {i} beyond the prepared capacity");
+                        continue;
                     }
+                    let _ = radius;
+                    FixedLight::Point { position, power }
                 }
             };
             // Same capacity as the scene: cannot fail.
@@ -885,7 +941,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     .iter()
                     .map(|c| to_f32(c.to_bits() as i64, 16))
                     .fold(0.0, f32::max),
-                FixedLight::Point { .. } => 0.0,
+                // Never reached: the narrow kernel takes distant lights only (checked above).
+                _ => 0.0,
             })
             .sum();
         self.narrow_lights.clear();

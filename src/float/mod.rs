@@ -23,7 +23,7 @@
 //! with simd128: `.ci/bit-identity`).
 
 #[cfg(feature = "area-lights")]
-mod area;
+pub(crate) mod area;
 #[cfg(feature = "antialias")]
 mod edges;
 mod kernel;
