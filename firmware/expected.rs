@@ -79,6 +79,12 @@ pub const AREA_LIGHTS_SPHERE_RGB565_CRC32: u32 = 0xdddc_f1b9;
 /// CRC32 of the same frame under a point light at the light sphere's centre (radius 0):
 /// `scalar-point-light`.
 pub const AREA_LIGHTS_POINT_RGB565_CRC32: u32 = 0xbf38_9e03;
+/// CRC32 of the area-lights frame under its sphere light rendered by `PreparedFixed::<5, 1>`
+/// into `Rgb565`: the M4F firmware's `fixed-sphere-light` run (feature `area-lights`, which
+/// turns on the fixed path's `full-width` kernel; reported, not budgeted).
+pub const AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32: u32 = 0x739b_e030;
+/// The same under the point light: `fixed-point-light`.
+pub const AREA_LIGHTS_FIXED_POINT_RGB565_CRC32: u32 = 0x160d_f62c;
 /// Pixels of either frame whose primary ray hits a sphere (the light's size changes no
 /// primary ray).
 pub const AREA_LIGHTS_COVERED: u64 = 36_588;

@@ -13,8 +13,9 @@
 //! each reflection model alone (`shadeline::covered_sphere` of each of
 //! `shadeline::model_samples`: `scalar-phong`, `fixed-phong`, `scalar-nbp` (normalized
 //! Blinn-Phong), … `fixed-ggx-gold`); with the feature `area-lights`, it also renders the
-//! area-lights preset on the scalar path under its sphere light and under a point light at
-//! the same place (`scalar-sphere-light`, `scalar-point-light`).
+//! area-lights preset on the scalar and the fixed path under its sphere light and under a
+//! point light at the same place (`scalar-sphere-light`, `scalar-point-light`,
+//! `fixed-sphere-light`, `fixed-point-light`).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -121,6 +122,8 @@ fn main() -> ! {
     static mut POINT_SCENE: Option<Scene<5, 1>> = None;
     #[cfg(feature = "area-lights")]
     static mut POINT: Option<Prepared<M4fScalar, 5, 1>> = None;
+    #[cfg(feature = "area-lights")]
+    static mut AREA_FIXED: PreparedFixed<5, 1> = PreparedFixed::EMPTY;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -235,26 +238,34 @@ fn main() -> ! {
     #[cfg(feature = "area-lights")]
     {
         use common::expected::{
-            AREA_LIGHTS_COVERED, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_POINT_RGB565_CRC32,
-            AREA_LIGHTS_SPHERE_RGB565_CRC32, AREA_LIGHTS_WIDTH,
+            AREA_LIGHTS_COVERED, AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32, AREA_LIGHTS_HEIGHT,
+            AREA_LIGHTS_POINT_RGB565_CRC32, AREA_LIGHTS_SPHERE_RGB565_CRC32, AREA_LIGHTS_WIDTH,
         };
         let runs = [
             (
-                "scalar-sphere-light",
+                ["scalar-sphere-light", "fixed-sphere-light"],
                 AREA_SCENE,
                 AREA,
                 shadeline::AREA_LIGHT_RADIUS,
-                AREA_LIGHTS_SPHERE_RGB565_CRC32,
+                [
+                    AREA_LIGHTS_SPHERE_RGB565_CRC32,
+                    AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
+                ],
             ),
             (
-                "scalar-point-light",
+                ["scalar-point-light", "fixed-point-light"],
                 POINT_SCENE,
                 POINT,
                 0.0,
-                AREA_LIGHTS_POINT_RGB565_CRC32,
+                [
+                    AREA_LIGHTS_POINT_RGB565_CRC32,
+                    AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+                ],
             ),
         ];
-        for (name, scene_slot, slot, radius, crc) in runs {
+        let pixels = (AREA_LIGHTS_WIDTH * AREA_LIGHTS_HEIGHT) as usize;
+        for ([name, fixed_name], scene_slot, slot, radius, [crc, fixed_crc]) in runs {
             let (Some(scene), _) = session.build(scene_slot, || shadeline::area_lights(radius))
             else {
                 session.note("shadeline-fw error=scene-area-lights\n");
@@ -264,12 +275,33 @@ fn main() -> ! {
                 name,
                 slot,
                 || Prepared::<M4fScalar, 5, 1>::new(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT),
-                Sink::Frame(&mut FRAME[..(AREA_LIGHTS_WIDTH * AREA_LIGHTS_HEIGHT) as usize]),
+                Sink::Frame(&mut FRAME[..pixels]),
                 Expected {
                     crc,
                     covered: AREA_LIGHTS_COVERED,
                 },
             );
+            let fixed = &mut *AREA_FIXED;
+            match session.build_in(fixed, |f| {
+                f.prepare(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT)
+            }) {
+                (Some(path), prepare) => session.run(
+                    fixed_name,
+                    path,
+                    Sink::Frame(&mut FRAME[..pixels]),
+                    prepare,
+                    Expected {
+                        crc: fixed_crc,
+                        covered: AREA_LIGHTS_COVERED,
+                    },
+                ),
+                (None, _) => {
+                    session.note("shadeline-fw error=prepare-");
+                    session.note(fixed_name);
+                    session.note("\n");
+                    session.fail();
+                }
+            }
         }
     }
     match session.build_in(FIXED, |f| f.prepare(scene, WIDTH, HEIGHT)) {
