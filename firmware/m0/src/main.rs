@@ -10,7 +10,10 @@
 //! count covered pixels itself (that would link a second row loop, into hit records, that no
 //! user's firmware has): its `covered=` is the host's count from `expected.rs`. The report's `peak_stack` plus `llvm-size`'s
 //! `.data + .bss` is the RAM it needs. With the feature `antialias` it also renders the
-//! frame with the fixed path's analytic anti-aliasing (`fixed-aa`), in the same buffers.
+//! frame with the fixed path's analytic anti-aliasing (`fixed-aa`), in the same buffers;
+//! with `area-lights`, the area-lights preset at 320×160 under its sphere light and under a
+//! point light at the same place (`fixed-sphere-light`, `fixed-point-light`), in the same
+//! buffers too (the preset's capacities are the exponent series').
 //!
 //! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -86,6 +89,52 @@ fn main() -> ! {
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed-aa\n");
             session.fail();
+        }
+    }
+    #[cfg(feature = "area-lights")]
+    {
+        use common::expected::{
+            AREA_LIGHTS_COVERED, AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_WIDTH,
+        };
+        let runs = [
+            (
+                "fixed-sphere-light",
+                shadeline::AREA_LIGHT_RADIUS,
+                AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
+            ),
+            (
+                "fixed-point-light",
+                0.0,
+                AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            ),
+        ];
+        for (name, radius, crc) in runs {
+            let (Some(scene), _) = session.build(&mut *SCENE, || shadeline::area_lights(radius))
+            else {
+                session.note("shadeline-fw error=scene-area-lights\n");
+                exit(false)
+            };
+            match session.build_in(&mut *FIXED, |f| {
+                f.prepare(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT)
+            }) {
+                (Some(path), prepare) => session.run(
+                    name,
+                    path,
+                    Sink::Line(&mut LINE[..AREA_LIGHTS_WIDTH as usize]),
+                    prepare,
+                    Expected {
+                        crc,
+                        covered: AREA_LIGHTS_COVERED,
+                    },
+                ),
+                (None, _) => {
+                    session.note("shadeline-fw error=prepare-");
+                    session.note(name);
+                    session.note("\n");
+                    session.fail();
+                }
+            }
         }
     }
     exit(session.finish() == Outcome::Pass)

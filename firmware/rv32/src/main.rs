@@ -2,7 +2,10 @@
 //! RGB565 framebuffer, on the scalar `f32` path (every float operation in software, which
 //! must still give the host's bits: IEEE single precision with the same operations) and the
 //! fixed-point path. Reported over semihosting with CRC, instruction count (`minstret`) and
-//! stack high-water mark; exits 0 only if both CRCs match.
+//! stack high-water mark; exits 0 only if both CRCs match. With the feature `area-lights`
+//! it also renders the area-lights preset at 320×160 on the fixed path, under its sphere
+//! light and under a point light at the same place (`fixed-sphere-light`,
+//! `fixed-point-light`).
 //!
 //! Run with `cargo rv32` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -75,6 +78,55 @@ fn main() -> ! {
         (None, _) => {
             session.note("shadeline-fw error=prepare-fixed\n");
             session.fail();
+        }
+    }
+    #[cfg(feature = "area-lights")]
+    {
+        use common::expected::{
+            AREA_LIGHTS_COVERED, AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_WIDTH,
+        };
+        let runs = [
+            (
+                "fixed-sphere-light",
+                shadeline::AREA_LIGHT_RADIUS,
+                AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
+            ),
+            (
+                "fixed-point-light",
+                0.0,
+                AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            ),
+        ];
+        let mut area_scene: Option<Scene<5, 1>> = None;
+        let mut area_fixed = PreparedFixed::<5, 1>::EMPTY;
+        for (name, radius, crc) in runs {
+            let (Some(scene), _) =
+                session.build(&mut area_scene, || shadeline::area_lights(radius))
+            else {
+                session.note("shadeline-fw error=scene-area-lights\n");
+                exit(false)
+            };
+            match session.build_in(&mut area_fixed, |f| {
+                f.prepare(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT)
+            }) {
+                (Some(path), prepare) => session.run(
+                    name,
+                    path,
+                    Sink::Frame(&mut frame[..(AREA_LIGHTS_WIDTH * AREA_LIGHTS_HEIGHT) as usize]),
+                    prepare,
+                    Expected {
+                        crc,
+                        covered: AREA_LIGHTS_COVERED,
+                    },
+                ),
+                (None, _) => {
+                    session.note("shadeline-fw error=prepare-");
+                    session.note(name);
+                    session.note("\n");
+                    session.fail();
+                }
+            }
         }
     }
     exit(session.finish() == Outcome::Pass)
