@@ -1,5 +1,6 @@
 //! Criterion benchmarks of the float paths, single thread, reported as Mpix/s; the fixed
-//! path only in `model/*` and `frame/microfacets` (its costs on the MCUs are QEMU counts,
+//! path in `frame/exponent-series` (with and without anti-aliasing), `model/*`,
+//! `frame/microfacets` and `frame/area-lights` (its costs on the MCUs are QEMU counts,
 //! `.ci/firmware`).
 //!
 //! - `frame/*`: the exponent series at 320×240 and 1024×747, every width, with and without
@@ -69,10 +70,24 @@ fn bench_fixed<const S: usize, const L: usize>(
     (w, h): (u32, u32),
     id: &str,
 ) {
+    bench_fixed_with(c, group, scene, (w, h), id, false);
+}
+
+/// [`bench_fixed`] with the anti-aliased silhouettes on or off.
+fn bench_fixed_with<const S: usize, const L: usize>(
+    c: &mut Criterion,
+    group: &str,
+    scene: &Scene<S, L>,
+    (w, h): (u32, u32),
+    id: &str,
+    antialias: bool,
+) {
     let mut g = c.benchmark_group(group);
     g.throughput(Throughput::Elements(w as u64 * h as u64));
     let mut buf = vec![Rgb888::default(); w as usize * h as usize];
-    let fixed = PreparedFixed::<S, L>::new(scene, w, h).unwrap();
+    let fixed = PreparedFixed::<S, L>::new(scene, w, h)
+        .unwrap()
+        .with_antialiasing(antialias);
     g.bench_function(BenchmarkId::new("fixed", id), |b| {
         b.iter(|| render(&fixed, &mut buf))
     });
@@ -172,6 +187,10 @@ fn benches(c: &mut Criterion) {
             &id,
             (true, true),
         );
+        for (kind, antialias) in [("spans", false), ("antialiased", true)] {
+            let group = format!("{group}/{kind}");
+            bench_fixed_with(c, &group, &series, size, &id, antialias);
+        }
     }
     bench_paths(
         c,

@@ -89,9 +89,11 @@ LINEAR, LINEAR_DITHERED, SRGB, SRGB_DITHERED = range(4)
 
 
 def scene(camera, spheres, lights, width, height, rows=(0, 0), background=(0.1, 0.2, 0.3),
-          encoding=LINEAR):
+          encoding=LINEAR, radii=()):
     """`width` is the image width (1..=67), encoded as `width - 1`; `encoding` indexes
-    `ENCODINGS` (linear, linear dithered, sRGB, sRGB dithered)."""
+    `ENCODINGS` (linear, linear dithered, sRGB, sRGB dithered); `radii` are the point
+    lights' radii, in order (the last field: a `Vec` that the end of the input ends, so a
+    seed without radii ends before it and has only point lights)."""
     position, look_at, up, vfov = camera
     out = v3(*position) + v3(*look_at) + v3(*up) + num(vfov)
     out += v3(*background)
@@ -99,6 +101,7 @@ def scene(camera, spheres, lights, width, height, rows=(0, 0), background=(0.1, 
     out += b"".join(lights) + b"\x00"
     out += bytes([width - 1]) + struct.pack("<H", height) + struct.pack("<HH", *rows)
     out += bytes([encoding])
+    out += b"".join(b"\x01" + num(r) for r in radii)
     return out
 
 
@@ -161,6 +164,18 @@ SEEDS = {
                 model=normalized(dielectric(), [(0.2, 100.0), (0.1, 1.0)], blinn=True))],
         [point((0.0, 4.0, 6.0), intensity=300.0), distant((-1.0, -1.0, -1.0))],
         67, 31, rows=(15, 12), encoding=SRGB_DITHERED),
+    # A row of spheres under a sphere light above it: soft shadows and widened lobes.
+    "row-sphere-light": scene(
+        ((0.0, 0.0, 9.0), (0.0, 0.0, 0.0), (0.0, 1.0, 0.0), 40.0),
+        [sphere((x, 0.0, 0.0), 0.9, ks=0.4, n=n) for x, n in
+         [(-3.0, 5.0), (-1.0, 50.0), (1.0, 400.0), (3.0, 2000.0)]],
+        [point((2.0, 3.0, 2.0), intensity=300.0)],
+        67, 31, rows=(15, 8), radii=(0.8,)),
+    # A sphere light almost touching a sphere, and a tiny one far away.
+    "sphere-lights-near-and-tiny": scene(
+        FRONT, [sphere((0.0, 0.0, 0.0), 1.0), sphere((1.5, 0.0, -1.0), 0.5)],
+        [point((0.0, 0.0, 2.0000002), intensity=20.0), point((0.0, 900.0, 0.0), intensity=1e7)],
+        31, 23, rows=(11, 5), radii=(1.0, 1e-6)),
     # Metals: copper and bronze, normalized Phong, linear dithered into every format.
     "metals": scene(
         FRONT,

@@ -24,9 +24,9 @@ use shadeline::scene::{
 };
 use shadeline::{
     Bgr565, BytePixel, Camera, Encoding, FixedShade, Gray8, HitRecord, Item, ItemKind, Light,
-    LinearRgb, Lobe, Material, Metal, Microfacet, Model, Pixel, Prepared, PreparedFixed, Problem, Render,
-    RenderError, Rgb565, Rgb888, Scalar, Scene, SceneError, Shade, Simd4, Simd8, Specular, Sphere,
-    Surface, Vec3, MORE_LOBES,
+    LinearRgb, Lobe, Material, Metal, Microfacet, Model, Pixel, Prepared, PreparedFixed, Problem,
+    Render, RenderError, Rgb565, Rgb888, Scalar, Scene, SceneError, Shade, Simd4, Simd8, Specular,
+    Sphere, Surface, Vec3, MORE_LOBES,
 };
 
 /// Sphere capacity of the fuzzed scenes: small, so that the capacity error is reached.
@@ -280,6 +280,10 @@ pub struct SceneInput {
     pub rows: [u16; 2],
     /// The encoding of the encoded rows: [`ENCODINGS`] modulo 4.
     pub encoding: u8,
+    /// The radii of the point lights, in order (0 for a point light, more for a sphere
+    /// light); a point light past the end has radius 0. Last, so that an input that ends
+    /// before it (every seed written before it existed) decodes as it did.
+    pub radii: Vec<Num>,
 }
 
 impl SceneInput {
@@ -352,9 +356,7 @@ mod model {
         let first = checks.into_iter().find_map(|(f, p)| p.map(|p| (f, p)));
         // Oren–Nayar's and GGX's roughness, after the fields every model has; then GGX's ior.
         let roughness = match m.model {
-            Model::OrenNayar { roughness } => {
-                non_negative(&[roughness], MAX_OREN_NAYAR_ROUGHNESS)
-            }
+            Model::OrenNayar { roughness } => non_negative(&[roughness], MAX_OREN_NAYAR_ROUGHNESS),
             Model::Ggx(micro) => finite(&[micro.roughness])
                 .or((micro.roughness < MIN_GGX_ROUGHNESS).then_some(Problem::TooSmall))
                 .or((micro.roughness > 1.0).then_some(Problem::TooLarge)),
@@ -429,6 +431,20 @@ mod model {
             ("intensity", non_negative(&[intensity], MAX_INTENSITY)),
         ];
         checks.into_iter().find_map(|(f, p)| p.map(|p| (f, p)))
+    }
+
+    /// Whether a sphere light overlaps `sphere` (touching is allowed), decided by the same
+    /// `f32` expression as the core's, so a tie goes the same way.
+    pub fn overlaps(l: &Light, sphere: &Sphere) -> bool {
+        let Light::Point {
+            position, radius, ..
+        } = *l
+        else {
+            return false;
+        };
+        let d = position - sphere.center;
+        let reach = radius + sphere.radius;
+        radius > 0.0 && d.dot(d) < reach * reach
     }
 
     /// The first refused field of a camera among those that do not depend on rounding
@@ -529,6 +545,7 @@ pub fn build_scene(input: &SceneInput) -> Option<FuzzScene> {
         let after = before + usize::from(want.is_ok());
         assert_eq!(scene.spheres().len(), after);
     }
+    let mut points = 0;
     for l in &input.lights {
         let light = match *l {
             LightIn::Distant {
@@ -544,15 +561,26 @@ pub fn build_scene(input: &SceneInput) -> Option<FuzzScene> {
                 position,
                 color,
                 intensity,
-            } => Light::Point {
-                position: position.vec(),
-                color: color.rgb(),
-                intensity: intensity.value(),
-                radius: 0.0,
-            },
+            } => {
+                let radius = input.radii.get(points).map_or(0.0, |r| r.value());
+                points += 1;
+                Light::Point {
+                    position: position.vec(),
+                    color: color.rgb(),
+                    intensity: intensity.value(),
+                    radius,
+                }
+            }
         };
         let before = scene.lights().len();
-        let want = match model::light(&light) {
+        let refused = model::light(&light).or_else(|| {
+            scene
+                .spheres()
+                .iter()
+                .any(|s| model::overlaps(&light, s))
+                .then_some(("radius", Problem::LightOverlapsSphere))
+        });
+        let want = match refused {
             Some(e) => Err(invalid(Item::Light(before), e)),
             None if before == LIGHTS => Err(SceneError::CapacityExceeded {
                 kind: ItemKind::Light,
@@ -720,7 +748,11 @@ fn check_encoded(row: &Row, y: u32, what: &str, float: bool) {
         let at = |f: &str| format!("{what}: pixel {x}, {f} {e:?}");
         let channels = [(c.r, plain.r), (c.g, plain.g), (c.b, plain.b)];
         let same = channels.iter().all(|(a, b)| a.to_bits() == b.to_bits());
-        assert!(same, "{}: {c:?} vs {plain:?}", at("linear with the encoding"));
+        assert!(
+            same,
+            "{}: {c:?} vs {plain:?}",
+            at("linear with the encoding")
+        );
         assert_eq!(
             row.enc_rgb888[x],
             rule::<Rgb888>(c, e, float, xi, y),
