@@ -39,7 +39,7 @@ use crate::stack;
 use crate::text::Line;
 #[cfg(feature = "count-covered")]
 use shadeline::HitRecord;
-use shadeline::{Render, Rgb565};
+use shadeline::{PreparedFixed, Render, Rgb565, Scene};
 
 /// What a firmware supplies about its board.
 pub trait Board {
@@ -271,6 +271,71 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
             .field("render_stack", figures.render_stack as u64)
             .byte(b'\n');
         self.board.write(line.as_bytes());
+    }
+
+    /// The area-lights preset on the fixed path at the size of `expected`'s area-lights
+    /// frames, under its sphere light and under a point light at the same place
+    /// (`fixed-sphere-light`, `fixed-point-light`): each scene built into `scene`, prepared
+    /// in place into `fixed`, rendered into `buffer` (a line buffer if `line`, else a
+    /// framebuffer) and checked against the golden CRCs. A shadeline without its
+    /// `area-lights` and `full-width` features refuses the sphere light, which fails the
+    /// session.
+    pub fn fixed_area_lights(
+        &mut self,
+        scene: &mut Option<Scene<5, 1>>,
+        fixed: &mut PreparedFixed<5, 1>,
+        buffer: &mut [Rgb565],
+        line: bool,
+    ) {
+        use crate::expected::{
+            AREA_LIGHTS_COVERED, AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_WIDTH,
+        };
+        let runs = [
+            (
+                "fixed-sphere-light",
+                shadeline::AREA_LIGHT_RADIUS,
+                AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
+            ),
+            (
+                "fixed-point-light",
+                0.0,
+                AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
+            ),
+        ];
+        let (w, h) = (AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT);
+        for (name, radius, crc) in runs {
+            let (Some(built), _) = self.build(&mut *scene, || shadeline::area_lights(radius))
+            else {
+                self.note("shadeline-fw error=scene-area-lights\n");
+                self.fail();
+                return;
+            };
+            let (Some(path), prepare) = self.build_in(&mut *fixed, |f| f.prepare(built, w, h))
+            else {
+                self.note("shadeline-fw error=prepare-");
+                self.note(name);
+                self.note("\n");
+                self.fail();
+                continue;
+            };
+            let pixels = if line { w } else { w * h } as usize;
+            let Some(out) = buffer.get_mut(..pixels) else {
+                self.note("shadeline-fw error=buffer-area-lights\n");
+                self.fail();
+                return;
+            };
+            let sink = if line {
+                Sink::Line(out)
+            } else {
+                Sink::Frame(out)
+            };
+            let expected = Expected {
+                crc,
+                covered: AREA_LIGHTS_COVERED,
+            };
+            self.run(name, path, sink, prepare, expected);
+        }
     }
 
     /// Reports the verdict and the deepest stack of the session; returns the verdict.

@@ -92,50 +92,6 @@ fn main() -> ! {
         }
     }
     #[cfg(feature = "area-lights")]
-    {
-        use common::expected::{
-            AREA_LIGHTS_COVERED, AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
-            AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_WIDTH,
-        };
-        let runs = [
-            (
-                "fixed-sphere-light",
-                shadeline::AREA_LIGHT_RADIUS,
-                AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
-            ),
-            (
-                "fixed-point-light",
-                0.0,
-                AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
-            ),
-        ];
-        for (name, radius, crc) in runs {
-            let (Some(scene), _) = session.build(&mut *SCENE, || shadeline::area_lights(radius))
-            else {
-                session.note("shadeline-fw error=scene-area-lights\n");
-                exit(false)
-            };
-            match session.build_in(&mut *FIXED, |f| {
-                f.prepare(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT)
-            }) {
-                (Some(path), prepare) => session.run(
-                    name,
-                    path,
-                    Sink::Line(&mut LINE[..AREA_LIGHTS_WIDTH as usize]),
-                    prepare,
-                    Expected {
-                        crc,
-                        covered: AREA_LIGHTS_COVERED,
-                    },
-                ),
-                (None, _) => {
-                    session.note("shadeline-fw error=prepare-");
-                    session.note(name);
-                    session.note("\n");
-                    session.fail();
-                }
-            }
-        }
-    }
+    session.fixed_area_lights(&mut *SCENE, &mut *FIXED, &mut LINE[..], true);
     exit(session.finish() == Outcome::Pass)
 }

@@ -82,52 +82,8 @@ fn main() -> ! {
     }
     #[cfg(feature = "area-lights")]
     {
-        use common::expected::{
-            AREA_LIGHTS_COVERED, AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
-            AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32, AREA_LIGHTS_HEIGHT, AREA_LIGHTS_WIDTH,
-        };
-        let runs = [
-            (
-                "fixed-sphere-light",
-                shadeline::AREA_LIGHT_RADIUS,
-                AREA_LIGHTS_FIXED_SPHERE_RGB565_CRC32,
-            ),
-            (
-                "fixed-point-light",
-                0.0,
-                AREA_LIGHTS_FIXED_POINT_RGB565_CRC32,
-            ),
-        ];
-        let mut area_scene: Option<Scene<5, 1>> = None;
-        let mut area_fixed = PreparedFixed::<5, 1>::EMPTY;
-        for (name, radius, crc) in runs {
-            let (Some(scene), _) =
-                session.build(&mut area_scene, || shadeline::area_lights(radius))
-            else {
-                session.note("shadeline-fw error=scene-area-lights\n");
-                exit(false)
-            };
-            match session.build_in(&mut area_fixed, |f| {
-                f.prepare(scene, AREA_LIGHTS_WIDTH, AREA_LIGHTS_HEIGHT)
-            }) {
-                (Some(path), prepare) => session.run(
-                    name,
-                    path,
-                    Sink::Frame(&mut frame[..(AREA_LIGHTS_WIDTH * AREA_LIGHTS_HEIGHT) as usize]),
-                    prepare,
-                    Expected {
-                        crc,
-                        covered: AREA_LIGHTS_COVERED,
-                    },
-                ),
-                (None, _) => {
-                    session.note("shadeline-fw error=prepare-");
-                    session.note(name);
-                    session.note("\n");
-                    session.fail();
-                }
-            }
-        }
+        let (mut scene, mut fixed) = (None, PreparedFixed::<5, 1>::EMPTY);
+        session.fixed_area_lights(&mut scene, &mut fixed, &mut frame[..], false);
     }
     exit(session.finish() == Outcome::Pass)
 }
