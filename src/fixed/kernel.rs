@@ -31,7 +31,7 @@
 
 #[cfg(feature = "full-width")]
 use super::exact::shift_saturating;
-#[cfg(all(feature = "area-lights", feature = "full-width"))]
+#[cfg(feature = "full-width")]
 use super::exact::Exact;
 #[cfg(all(feature = "models", feature = "full-width"))]
 use super::mul::leading_zeros;
@@ -307,18 +307,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                         reach: Some(0),
                     };
                 };
-                let to_light = lv.map(|c| {
-                    let u = mul_iu(to_len(c).to_bits(), y) >> (shift - 30).min(63);
-                    Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
-                });
-                // 1/d² in units = y²·2^(63 − 2·shift) with y² in U1F31; arriving in U16F16.
-                let y2 = (mul_uu(y, y) >> 31) as u32;
-                let e = 79 - 2 * shift as i32;
-                let arriving =
-                    power.map(|pw| shift_saturating(mul_uu(pw.mantissa, y2), pw.exponent + e));
                 Incoming {
-                    to_light,
-                    arriving,
+                    to_light: lv.map(|c| unit_component(c, (y, shift))),
+                    arriving: arriving(power, (y, shift)),
                     reach: Some(sqrt(d2) as i64),
                 }
             }
@@ -347,11 +338,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let lv = each3(|i| position[i].to_bits() as i64 - p[i].to_bits() as i64);
         let dist2 = length_sq(lv).max(0);
         let (y, shift) = inv_sqrt(dist2 as u64)?;
-        let unit = |v: i64, y: u32, shift: u32| {
-            let u = mul_iu(to_len(v).to_bits(), y) >> (shift - 30).min(63);
-            Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
-        };
-        let axis = lv.map(|c| unit(c, y, shift));
+        let axis = lv.map(|c| unit_component(c, (y, shift)));
         let r = radius.to_bits().max(0) as u32;
         let sin_a = (mul_uu(r, y) >> (shift - 30).min(63)).min(ONE as u64) as u32;
         let cos_axis = dot_unit(n, axis);
@@ -366,20 +353,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let to_ray2 = length_sq(to_ray);
         let r2 = mul_uu(r, r) as i64;
         let rep = match inv_sqrt(to_ray2.max(0) as u64) {
-            Some((y2, shift2)) if r2 < to_ray2 => {
-                each3(|i| lv[i] + len_times_unit(r as i64, unit(to_ray[i], y2, shift2)))
+            Some(inv) if r2 < to_ray2 => {
+                each3(|i| lv[i] + len_times_unit(r as i64, unit_component(to_ray[i], inv)))
             }
             _ => each3(|i| lv[i] + to_ray[i]),
         };
-        let to_light = normalize(rep).unwrap_or([Unit::ZERO; 3]);
-        // 1/d² in units = y²·2^(63 − 2·shift) with y² in U1F31; arriving in U16F16.
-        let y2 = (mul_uu(y, y) >> 31) as u32;
-        let e = 79 - 2 * shift as i32;
-        let arriving = power.map(|pw| shift_saturating(mul_uu(pw.mantissa, y2), pw.exponent + e));
         Some(SphereSeen {
             incoming: Incoming {
-                to_light,
-                arriving,
+                to_light: normalize(rep).unwrap_or([Unit::ZERO; 3]),
+                arriving: arriving(power, (y, shift)),
                 reach: None,
             },
             axis,
@@ -423,7 +405,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let rho = chord(sin);
             // |B − A|² in F60 from the F30 components, B the unit vector toward the centre.
             let gap2 = each3(|i| {
-                let b = mul_iu(to_len(to_center[i]).to_bits(), y) >> (shift - 30).min(63);
+                let b = unit_component(to_center[i], (y, shift)).to_bits() as i64;
                 let g = (b - light.axis[i].to_bits() as i64)
                     .unsigned_abs()
                     .min(u32::MAX as u64);
@@ -617,6 +599,25 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             u32::try_from(a.saturating_add(b)).unwrap_or(u32::MAX)
         })
     }
+}
+
+/// Component `v` (raw I16F16) of a vector over its length, `1/|v| = y·2^-shift` as
+/// [`inv_sqrt`] returns it: I2F30, clamped to `[−1, 1]`.
+#[cfg(feature = "full-width")]
+#[inline(always)]
+fn unit_component(v: i64, (y, shift): (u32, u32)) -> Unit {
+    let u = mul_iu(to_len(v).to_bits(), y) >> (shift - 30).min(63);
+    Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
+}
+
+/// `power/d²` per channel in U16F16, saturating, from `1/d = y·2^-shift` (raw I16F16 `d`):
+/// `1/d²` in units is `y²·2^(63 − 2·shift)` with `y²` in U1F31.
+#[cfg(feature = "full-width")]
+#[inline(always)]
+fn arriving(power: V3<Exact>, (y, shift): (u32, u32)) -> [u32; 3] {
+    let y2 = (mul_uu(y, y) >> 31) as u32;
+    let e = 79 - 2 * shift as i32;
+    power.map(|pw| shift_saturating(mul_uu(pw.mantissa, y2), pw.exponent + e))
 }
 
 /// The half vector `H = normalize(L + V)`, `V = −d`; `None` where `L = −V`.
