@@ -6,8 +6,11 @@
 //! to the kernel ([`Prepared::shade`]) with only the spheres whose spans touch the packet. The
 //! last packet of a run computes full lanes and stores only the pixels that belong to the
 //! run: no per-lane branch in the math, no read or write outside the caller's slice. Then
-//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format. On the
-//! scalar paths, rows of a frame without a normalized material go to the kernel without the
+//! `encode` ([`store_packet`]) quantizes the packet into the caller's pixel format. The
+//! general kernel's packet loop ([`Prepared::shade_packets`]) is compiled once per pair of
+//! the format's flags (hit records, saturation) and hands its packets to the format's store
+//! through one indirect call each, so that a build rendering several formats holds a few
+//! copies of the kernel rather than one per format and encoding. On the scalar paths, rows of a frame without a normalized material go to the kernel without the
 //! normalized models' code (see [`super::kernel`]).
 //!
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
@@ -116,7 +119,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// Shades the covered `runs` of `out` (pixels `x…` of row `y`), packet by packet, and
     /// fills the rest with the background: the body of `render_segment_with`. `NORMALIZED`:
-    /// see [`Prepared::shade`].
+    /// see [`Prepared::shade`]. The packets come from [`Self::shade_packets`], which is not
+    /// generic over the pixel format: only the stores are.
     #[inline(always)]
     fn shade_runs<P: Pixel, const NORMALIZED: bool, const PLAIN: bool>(
         &self,
@@ -127,28 +131,61 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         runs: &[Span],
     ) {
         walk_runs(out, x, runs, background, |start, run_pixels| {
-            let mut candidates = Candidates::<S>::new();
-            // The lane count as a constant inside the closure, so that `chunks_mut`'s check
-            // for a zero size folds away even where the closure is not inlined.
-            for (chunk_index, chunk) in run_pixels.chunks_mut(W::Lane::LANES).enumerate() {
-                let x0 = (start + chunk_index * W::Lane::LANES) as u32;
-                let x1 = x0 + chunk.len() as u32;
-                let candidates = candidates.overlapping(spans, x0, x1);
-                if candidates.is_empty() {
-                    background.fill(chunk, x0 as usize);
-                    continue;
+            let lanes = W::Lane::LANES;
+            let run = (row, spans, start, run_pixels.len());
+            let mut store = |index: usize, packet: Option<&Packet<W::Lane>>| {
+                let from = index * lanes;
+                let to = (from + lanes).min(run_pixels.len());
+                let Some(chunk) = run_pixels.get_mut(from..to) else {
+                    return;
+                };
+                let x0 = start + from;
+                match packet {
+                    Some(packet) => {
+                        store_packet::<P, _, PLAIN>(chunk, packet, encoding, x0 as u32, y)
+                    }
+                    None => background.fill(chunk, x0),
                 }
-                // Formats with levels clamp each channel to [0, 1]: `+∞` stores what `f32::MAX` does.
-                let packet = self.shade::<NORMALIZED>(
-                    row,
-                    x0,
-                    candidates,
-                    P::NEEDS_HITS,
-                    P::LEVELS.is_none(),
-                );
-                store_packet::<P, _, PLAIN>(chunk, &packet, encoding, x0, y);
+            };
+            // The flags are constants of the pixel format: one arm is left per format.
+            // Formats with levels clamp each channel to [0, 1]: `+∞` stores what `f32::MAX` does.
+            match (P::NEEDS_HITS, P::LEVELS.is_none()) {
+                (false, false) => self.shade_packets::<NORMALIZED, false, false>(run, &mut store),
+                (false, true) => self.shade_packets::<NORMALIZED, false, true>(run, &mut store),
+                (true, false) => self.shade_packets::<NORMALIZED, true, false>(run, &mut store),
+                (true, true) => self.shade_packets::<NORMALIZED, true, true>(run, &mut store),
             }
         });
+    }
+
+    /// The general kernel's packet loop over one covered run (`row`, the row's `spans`, the
+    /// run's first column and length): each packet, shaded with the spheres whose spans touch
+    /// it ([`Prepared::shade`], with `HITS` and `SATURATE` as its `record_hits` and
+    /// `saturate`), goes to `store` with its index in the run, and a packet no span touches
+    /// goes there as `None`. Out of line and generic only over what the kernel's code depends
+    /// on: a frame rendered into several pixel formats holds one copy of the kernel per pair
+    /// of flags, not one per format and encoding (about ten, each among the largest functions
+    /// of a build). The call through `store` costs one indirect call per packet.
+    #[inline(never)]
+    fn shade_packets<const NORMALIZED: bool, const HITS: bool, const SATURATE: bool>(
+        &self,
+        (row, spans, start, len): (&Row, &[Option<Span>], usize, usize),
+        store: &mut PacketStore<'_, W::Lane>,
+    ) {
+        let lanes = W::Lane::LANES;
+        let mut candidates = Candidates::<S>::new();
+        for index in 0..len.div_ceil(lanes) {
+            let from = index * lanes;
+            let x0 = (start + from) as u32;
+            let x1 = x0 + lanes.min(len - from) as u32;
+            let candidates = candidates.overlapping(spans, x0, x1);
+            if candidates.is_empty() {
+                store(index, None);
+                continue;
+            }
+            let packet = self.shade::<NORMALIZED>(row, x0, candidates, HITS, SATURATE);
+            store(index, Some(&packet));
+        }
     }
 
     /// [`Self::shade_runs`] for frames the narrow kernel takes: the row's quadrics once
@@ -203,6 +240,10 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         });
     }
 }
+
+/// Where [`Prepared::shade_packets`] hands each packet of a run: its index in the run, and
+/// the packet (`None` where no span touches it).
+type PacketStore<'a, T> = dyn FnMut(usize, Option<&Packet<T>>) + 'a;
 
 /// The spheres whose spans overlap a packet's pixels, in scene order, kept from one packet
 /// to the next while no span starts or ends between them: a run's packets walk left to
