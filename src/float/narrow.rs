@@ -59,7 +59,7 @@
 //! # Cost
 //!
 //! On a Cortex-M4F (exponent series, 320×240, QEMU count from `.ci/firmware`) the frame
-//! takes 3,745,541 instructions with it and 5,362,121 with the general kernel: the row's
+//! takes 3,745,975 instructions with it and 5,362,121 with the general kernel: the row's
 //! quadrics are made once per row (`narrow_row`, into a buffer the row driver owns), and
 //! while a packet's only candidate stays the same sphere its constants are looked up once
 //! (`single`, `shade_single`).
