@@ -10,8 +10,9 @@
 //! general kernel's packet loop ([`Prepared::shade_packets`]) is compiled once per pair of
 //! the format's flags (hit records, saturation) and hands its packets to the format's store
 //! through one indirect call each, so that a build rendering several formats holds a few
-//! copies of the kernel rather than one per format and encoding. On the scalar paths, rows of a frame without a normalized material go to the kernel without the
-//! normalized models' code (see [`super::kernel`]).
+//! copies of the kernel rather than one per format and encoding. On the scalar paths, rows
+//! of a frame without a normalized material go to the kernel without the normalized models'
+//! code (see [`super::kernel`]).
 //!
 //! A row is a pure function of the prepared frame and `y`: rows can be rendered in any order,
 //! on any number of threads, or streamed to a display one line buffer at a time.
