@@ -68,7 +68,8 @@ impl<P: Pixel> Background<P> {
     /// stores per block for every pixel format, with no call (`[P]::fill` is a loop per
     /// element, and `memcpy` calls cost their set-up on every gap). The block is a multiple
     /// of the dither pattern's period, 4, so every copy stays in phase.
-    #[inline(always)]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     pub(crate) fn fill(&self, out: &mut [P], x: usize) {
         let (head, tail) = out.split_at_mut(out.len().min(FILL_BLOCK));
         for (px, x) in head.iter_mut().zip(x..) {

@@ -44,17 +44,20 @@ impl<T: Real> Vec3<T> {
         Vec3::new(T::splat(v.x), T::splat(v.y), T::splat(v.z))
     }
     /// The dot product, summed as `(x·x' + y·y') + z·z'`.
-    #[inline(always)]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     pub fn dot(self, o: Self) -> T {
         self.x * o.x + self.y * o.y + self.z * o.z
     }
     /// Each component multiplied by `s`.
-    #[inline(always)]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     pub fn scale(self, s: T) -> Self {
         Vec3::new(self.x * s, self.y * s, self.z * s)
     }
     /// The cross product `self × o` (right-handed).
-    #[inline(always)]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     pub fn cross(self, o: Self) -> Self {
         Vec3::new(
             self.y * o.z - self.z * o.y,
@@ -116,7 +119,8 @@ impl Vec3<f32> {
 
 impl<T: Real> Add for Vec3<T> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn add(self, o: Self) -> Self {
         Vec3::new(self.x + o.x, self.y + o.y, self.z + o.z)
     }
@@ -124,7 +128,8 @@ impl<T: Real> Add for Vec3<T> {
 
 impl<T: Real> Sub for Vec3<T> {
     type Output = Self;
-    #[inline(always)]
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn sub(self, o: Self) -> Self {
         Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }

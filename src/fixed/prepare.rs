@@ -17,11 +17,15 @@ use super::mul::{mul_ii, mul_uu, mul_wide};
 use super::roots::inv_sqrt;
 use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
-use crate::brdf::{Params, LOBES};
+use crate::brdf::Params;
+#[cfg(feature = "full-width")]
+use crate::brdf::LOBES;
 use crate::render::RenderError;
 #[cfg(not(feature = "full-width"))]
 use crate::scene::Model;
-use crate::scene::{Item, Light, Scene, MORE_LOBES};
+#[cfg(feature = "full-width")]
+use crate::scene::MORE_LOBES;
+use crate::scene::{Item, Light, Scene};
 use crate::vec3::Vec3;
 use crate::MAX_DIMENSION;
 use fixed::types::{I16F48, I32F32, U16F16};
@@ -223,6 +227,7 @@ impl Divisor {
     /// `m·2^z` for a divisor of at most 64 significant bits; `None` for 0. The reciprocal
     /// comes from a 32-bit estimate and one Newton step `R + R·(2¹²⁷ − m·R)/2¹²⁷`
     /// (within `2⁻⁶⁰`), not from a 128-bit division.
+    #[inline(never)]
     fn new(m: u64, z: i32) -> Option<Self> {
         if m == 0 {
             return None;
@@ -361,8 +366,10 @@ pub(crate) struct FixedSphere {
     pub blinn: bool,
     /// A normalized model (or Lambert): the kernel's `normalized` terms, not the classic ones.
     pub normalized: bool,
+    #[cfg(feature = "full-width")]
     /// Schlick's factor applies.
     pub schlick: bool,
+    #[cfg(feature = "full-width")]
     /// The diffuse lobe is multiplied by `1 − F`.
     pub diffuse_loss: bool,
     pub center: V3<Len>,
@@ -371,10 +378,13 @@ pub(crate) struct FixedSphere {
     pub radius_sq: I32F32,
     /// `1/r` of the raw radius bits, as [`inv_sqrt`] returns it: `y·2^-shift`.
     pub inv_radius: (u32, u32),
+    #[cfg(feature = "full-width")]
     /// Normalized models: each lobe's weight times its normalization factor, exact.
     pub weight: [Exact; LOBES],
+    #[cfg(feature = "full-width")]
     /// Exponents of lobes 1 and 2.
     pub more_shininess: [Exact; MORE_LOBES],
+    #[cfg(feature = "full-width")]
     /// `F₀` per channel, U2F30 (`1 << 30` is 1).
     pub f0: [u32; 3],
     /// The screen rectangle, or `None` if the sphere is off screen.
@@ -688,6 +698,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let kd_albedo = params.kd_albedo;
             let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
             let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
+            #[cfg(any(feature = "full-width", feature = "models"))]
             let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
             let sphere = FixedSphere {
                 center,
@@ -699,10 +710,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 shininess: Exact::from_f32(m.shininess),
                 blinn: params.blinn > 0.0,
                 normalized: params.normalized > 0.0,
+                #[cfg(feature = "full-width")]
                 weight: params.weight.map(Exact::from_f32),
+                #[cfg(feature = "full-width")]
                 more_shininess: params.more_shininess.map(Exact::from_f32),
+                #[cfg(feature = "full-width")]
                 f0: [params.f0.x, params.f0.y, params.f0.z].map(unit),
+                #[cfg(feature = "full-width")]
                 schlick: params.schlick > 0.0,
+                #[cfg(feature = "full-width")]
                 diffuse_loss: params.diffuse_loss > 0.0,
                 bounds: view.bounds(s.center, s.radius),
                 narrow: None,

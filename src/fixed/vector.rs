@@ -70,7 +70,8 @@ pub(crate) fn to_len(v: i64) -> Len {
 /// The components are first shifted (exactly, by a power of two: only the direction
 /// matters) so the largest has 30 significant bits; then `1/|v|` comes from
 /// [`inv_sqrt`](super::roots::inv_sqrt), so the result's length is 1 within about `2⁻²⁹`.
-#[inline(always)]
+#[cfg_attr(not(shadeline_short_mul), inline(always))]
+#[cfg_attr(shadeline_short_mul, inline(never))]
 pub(crate) fn normalize(v: V3<i64>) -> Option<V3<Unit>> {
     let largest = v.iter().map(|c| c.unsigned_abs()).max().unwrap_or(0);
     if largest == 0 {
