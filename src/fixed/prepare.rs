@@ -60,6 +60,33 @@ pub(crate) struct NarrowView {
     pub step_y: V3<i32>,
 }
 
+impl NarrowView {
+    /// The direction `D = forward + dy·step_y + dx·step_x` at the half-pixel offsets
+    /// `(dx, dy)` from the centre of the screen. Out of line, like the other prepare
+    /// helpers: it runs a few times a frame.
+    #[inline(never)]
+    fn direction(&self, dx: i64, dy: i64) -> [i64; 3] {
+        each3(|i| self.forward[i] as i64 + dy * self.step_y[i] as i64 + dx * self.step_x[i] as i64)
+    }
+
+    /// `|D|²/2¹⁶` of [`direction`](Self::direction)`(dx, dy)`, each component taken to its
+    /// top bits first.
+    #[inline(never)]
+    fn len2_at(&self, dx: i64, dy: i64) -> i64 {
+        self.direction(dx, dy)
+            .iter()
+            .map(|&c| (c >> 8) * (c >> 8))
+            .sum::<i64>()
+    }
+}
+
+/// `v` (I16F48 bits) rounded to Q29, the narrow kernel's directions. Out of line: three
+/// vectors a frame.
+#[inline(never)]
+fn to_q29(v: V3<I16F48>) -> [i64; 3] {
+    v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19)
+}
+
 /// A quadratic in a pixel's offsets from a sphere's origin column and row, in half pixels:
 /// `q = c₀₀ + c₁₀·x + c₀₁·y + c₂₀·x² + c₁₁·x·y + c₀₂·y²` with `x = dx − X₀`, `y = dy − Y₀`
 /// (see [`NarrowSphere::origin`]), integer coefficients. Evaluated exactly: along a row it is
@@ -171,12 +198,7 @@ fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
 /// stack).
 #[inline(never)]
 fn e_quadric(r2: i64, w: &[V3<i64>; 3], dirs: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
-    let term = |a: usize, b: usize, twice: bool| {
-        let (u, v) = (dirs[a % 3], dirs[b % 3]);
-        let dot = each3(|k| mul_ii(u[k] as i32, v[k] as i32));
-        let c = mul_128(r2, dot[0] + dot[1] + dot[2]) - dot_128(w[a % 3], w[b % 3]);
-        den.divide(if twice { 2 * c } else { c })
-    };
+    let term = |a: usize, b: usize, twice: bool| e_term(r2, (w, dirs), (a, b), twice, den);
     Some(Quadric {
         c: [
             term(0, 0, false)?,
@@ -189,19 +211,28 @@ fn e_quadric(r2: i64, w: &[V3<i64>; 3], dirs: &[V3<i64>; 3], den: &Divisor) -> O
     })
 }
 
+/// One coefficient of [`e_quadric`]: `r²·(Dₐ·D_b) − wₐ·w_b` over `den`, doubled if
+/// `twice`. Out of line: six calls a sphere.
+#[inline(never)]
+fn e_term(
+    r2: i64,
+    (w, dirs): (&[V3<i64>; 3], &[V3<i64>; 3]),
+    (a, b): (usize, usize),
+    twice: bool,
+    den: &Divisor,
+) -> Option<i64> {
+    let (u, v) = (dirs[a % 3], dirs[b % 3]);
+    let dot = each3(|k| mul_ii(u[k] as i32, v[k] as i32));
+    let c = mul_128(r2, dot[0] + dot[1] + dot[2]) - dot_128(w[a % 3], w[b % 3]);
+    den.divide(if twice { 2 * c } else { c })
+}
+
 /// The quadric `G` over `den`, from `G·r·2⁸⁸ = (oc × D)·(L × D)` (see [`Quadric`]) with `w`
 /// and `v` the cross products of `oc` and of `L` with the three directions of
 /// [`e_quadric`], exact in `i128` and divided one at a time.
 #[inline(never)]
 fn g_quadric(w: &[V3<i64>; 3], v: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
-    let term = |a: usize, b: usize| {
-        let c = if a == b {
-            dot_128(w[a % 3], v[a % 3])
-        } else {
-            dot_128(w[a % 3], v[b % 3]) + dot_128(w[b % 3], v[a % 3])
-        };
-        den.divide(c)
-    };
+    let term = |a: usize, b: usize| g_term((w, v), (a, b), den);
     Some(Quadric {
         c: [
             term(0, 0)?,
@@ -212,6 +243,22 @@ fn g_quadric(w: &[V3<i64>; 3], v: &[V3<i64>; 3], den: &Divisor) -> Option<Quadri
             term(2, 2)?,
         ],
     })
+}
+
+/// One coefficient of [`g_quadric`]: `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal) over
+/// `den`. Out of line: six calls a sphere and light.
+#[inline(never)]
+fn g_term(
+    (w, v): (&[V3<i64>; 3], &[V3<i64>; 3]),
+    (a, b): (usize, usize),
+    den: &Divisor,
+) -> Option<i64> {
+    let c = if a == b {
+        dot_128(w[a % 3], v[a % 3])
+    } else {
+        dot_128(w[a % 3], v[b % 3]) + dot_128(w[b % 3], v[a % 3])
+    };
+    den.divide(c)
 }
 
 /// A positive divisor `m·2^z` held as `⌊(2¹²⁷ − 1)/m⌋` with `m` in `[2⁶³, 2⁶⁴)`, so that a
@@ -919,7 +966,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err((Item::Sphere(sphere), "center"));
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
-        let narrow = |v: V3<I16F48>| v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19);
+        let narrow = to_q29;
         // Steps below 2²⁸ (so `2·step` fits; a one-pixel-wide image leaves `step_x` unbounded
         // by the corner test below).
         let fits = |v: [i64; 3]| v.iter().all(|c| c.unsigned_abs() < 1 << 28);
@@ -939,13 +986,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // Every direction within √2 of the central one in length (the corners are the
         // longest): then |D| < 2³⁰ and every narrow format holds.
         let (w, h) = (self.width as i64 - 1, self.height as i64 - 1);
-        let len2 = |d: [i64; 3]| d.iter().map(|&c| (c >> 8) * (c >> 8)).sum::<i64>();
-        let centre = len2(view.forward.map(|c| c as i64));
+        let centre = view.len2_at(0, 0);
         for (dx, dy) in [(-w, -h), (-w, h), (w, -h), (w, h)] {
-            let d = each3(|i| {
-                view.forward[i] as i64 + dy * view.step_y[i] as i64 + dx * view.step_x[i] as i64
-            });
-            if len2(d) > 2 * centre {
+            if view.len2_at(dx, dy) > 2 * centre {
                 return Err((Item::Camera, "vfov"));
             }
         }
@@ -1002,7 +1045,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let y = ((b.rows.0 + b.rows.1) / 2).min(self.height - 1) as i32;
             (2 * x + 1 - width, height - 2 * y - 1)
         });
-        let dc = each3(|k| view.forward[k] as i64 + y0 as i64 * sy[k] + x0 as i64 * sx[k]);
+        let dc = view.direction(x0 as i64, y0 as i64);
         // ⌈log₂ max(1, |ô|²)⌉: below 28, since the scene lies within 2¹³ units and r ≥ 1
         // unit.
         let r2 = mul_ii(r as i32, r as i32);
