@@ -380,6 +380,13 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
     high + low
 }
 
+/// `a·b` of two `i32` vectors, exact: the run set-up's five dot products, one routine
+/// (its products inline) rather than fifteen inline products.
+#[inline(never)]
+fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
+    mul_ii(a[0], b[0]) + mul_ii(a[1], b[1]) + mul_ii(a[2], b[2])
+}
+
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The narrow direction of pixel `x` on row `y`.
     #[inline(always)]
@@ -394,7 +401,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// the narrow kernel. In place because a run holds a track per sphere, which a returned
     /// value would cost a `memcpy` or two per run. Only the spheres whose span meets the run
     /// get a track, each with its quadrics at its span's first column (`Quadric::row`,
-    /// `Quadric::step_at`: a handful of 64-bit products per track and light).
+    /// `Quadric::step_at_cell`: a handful of 64-bit products per track and light).
     /// Not inlined: once per run, and apart from the pixel loop's registers.
     #[inline(never)]
     pub(crate) fn narrow_run(
@@ -434,12 +441,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             );
             let mut g = [Step::default(); L];
             for (g, light) in g.iter_mut().zip(lights).take(self.lights.len()) {
-                *g = Quadric::step_at(light.g.row(y_offset), x_offset);
+                *g = light.g.step_at_cell(y_offset, x_offset);
             }
             let track = Track {
                 index,
                 span,
-                e: Quadric::step_at(n.e.row(y_offset), x_offset),
+                e: n.e.step_at_cell(y_offset, x_offset),
                 e_shift: n.e_shift,
                 g,
             };
@@ -451,8 +458,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         run.x = x;
         let d = Self::narrow_direction(view, x, y, self.width, self.height);
         let step = view.step_x.map(|c| 2 * c);
-        let dot =
-            |a: V3<i32>, b: V3<i32>| mul_ii(a[0], b[0]) + mul_ii(a[1], b[1]) + mul_ii(a[2], b[2]);
+        let dot = dot_i32;
         // |D + k·S|² = |D|² + k·2D·S + k²|S|²: the step from k to k + 1 is 2D·S + (2k + 1)|S|².
         let ss = dot(step, step);
         run.a = Step {

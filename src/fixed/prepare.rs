@@ -119,6 +119,15 @@ impl Quadric {
         [e0, e1, c20]
     }
 
+    /// The state at column offset `x` on the row `y` ([`row`](Self::row), then
+    /// [`step_at`](Self::step_at)). Out of line on ARMv6-M, where its eight products are
+    /// inline sequences: once per run, sphere and quadric.
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
+    pub(crate) fn step_at_cell(&self, y: i32, x: i32) -> Step {
+        Self::step_at(self.row(y), x)
+    }
+
     /// The state at column offset `x` of a row's `(e₀, e₁, e₂)`, stepping by two half pixels
     /// (one pixel) per column.
     #[inline(always)]
