@@ -380,8 +380,8 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
     high + low
 }
 
-/// `a·b` of two `i32` vectors, exact: the run set-up's five dot products, one routine
-/// (its products inline) rather than fifteen inline products.
+/// `a·b` of two `i32` vectors, exact ([`narrow_b`]'s products): the run set-up's dot
+/// products, one routine (its products inline) rather than three inline products at each.
 #[inline(never)]
 fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
     mul_ii(a[0], b[0]) + mul_ii(a[1], b[1]) + mul_ii(a[2], b[2])
@@ -389,7 +389,7 @@ fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The narrow direction of pixel `x` on row `y`.
-    #[inline(always)]
+    #[inline(never)]
     fn narrow_direction(view: &NarrowView, x: u32, y: u32, width: u32, height: u32) -> V3<i32> {
         let dy = height as i32 - 2 * y as i32 - 1;
         let dx = 2 * x as i32 + 1 - width as i32;
@@ -427,7 +427,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             let oc = s.eye_offset.map(|c| c.to_bits());
             let b_at = |column| {
-                narrow_b(
+                dot_i32(
                     oc,
                     Self::narrow_direction(view, column, y, self.width, self.height),
                 )
