@@ -91,9 +91,7 @@ use super::exact::{shift_saturating, Exact};
 use super::kernel::{half_vector, lobe_h, Shaded};
 use super::mul::inline::{mul_ii, mul_uu};
 use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
-use super::prepare::{
-    FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, Quadric, Step,
-};
+use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, Step};
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{dot_len_unit, each3, length_sq, to_len, Unit, V3};
 use crate::pixel::HitRecord;
@@ -381,15 +379,19 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
 }
 
 /// `a·b` of two `i32` vectors, exact ([`narrow_b`]'s products): the run set-up's dot
-/// products, one routine (its products inline) rather than three inline products at each.
-#[inline(never)]
+/// products, one routine on ARMv6-M (its products inline) rather than three inline
+/// products at each.
+#[cfg_attr(not(shadeline_short_mul), inline(always))]
+#[cfg_attr(shadeline_short_mul, inline(never))]
 fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
     mul_ii(a[0], b[0]) + mul_ii(a[1], b[1]) + mul_ii(a[2], b[2])
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
-    /// The narrow direction of pixel `x` on row `y`.
-    #[inline(never)]
+    /// The narrow direction of pixel `x` on row `y`. One routine on ARMv6-M, for its flash:
+    /// the run set-up computes it at up to four columns.
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn narrow_direction(view: &NarrowView, x: u32, y: u32, width: u32, height: u32) -> V3<i32> {
         let dy = height as i32 - 2 * y as i32 - 1;
         let dx = 2 * x as i32 + 1 - width as i32;

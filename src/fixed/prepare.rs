@@ -62,16 +62,16 @@ pub(crate) struct NarrowView {
 
 impl NarrowView {
     /// The direction `D = forward + dy·step_y + dx·step_x` at the half-pixel offsets
-    /// `(dx, dy)` from the centre of the screen. Out of line, like the other prepare
-    /// helpers: it runs a few times a frame.
-    #[inline(never)]
+    /// `(dx, dy)` from the centre of the screen. Out of line on ARMv6-M, for its flash, like
+    /// the other prepare helpers there: it runs a few times a frame.
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn direction(&self, dx: i64, dy: i64) -> [i64; 3] {
         each3(|i| self.forward[i] as i64 + dy * self.step_y[i] as i64 + dx * self.step_x[i] as i64)
     }
 
     /// `|D|²/2¹⁶` of [`direction`](Self::direction)`(dx, dy)`, each component taken to its
     /// top bits first.
-    #[inline(never)]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn len2_at(&self, dx: i64, dy: i64) -> i64 {
         self.direction(dx, dy)
             .iter()
@@ -80,9 +80,9 @@ impl NarrowView {
     }
 }
 
-/// `v` (I16F48 bits) rounded to Q29, the narrow kernel's directions. Out of line: three
-/// vectors a frame.
-#[inline(never)]
+/// `v` (I16F48 bits) rounded to Q29, the narrow kernel's directions. Out of line on
+/// ARMv6-M: three vectors a frame.
+#[cfg_attr(shadeline_short_mul, inline(never))]
 fn to_q29(v: V3<I16F48>) -> [i64; 3] {
     v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19)
 }
@@ -221,8 +221,8 @@ fn e_quadric(r2: i64, w: &[V3<i64>; 3], dirs: &[V3<i64>; 3], den: &Divisor) -> O
 }
 
 /// One coefficient of [`e_quadric`]: `r²·(Dₐ·D_b) − wₐ·w_b` over `den`, doubled if
-/// `twice`. Out of line: six calls a sphere.
-#[inline(never)]
+/// `twice`. Out of line on ARMv6-M: six calls a sphere.
+#[cfg_attr(shadeline_short_mul, inline(never))]
 fn e_term(
     r2: i64,
     (w, dirs): (&[V3<i64>; 3], &[V3<i64>; 3]),
@@ -255,8 +255,8 @@ fn g_quadric(w: &[V3<i64>; 3], v: &[V3<i64>; 3], den: &Divisor) -> Option<Quadri
 }
 
 /// One coefficient of [`g_quadric`]: `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal) over
-/// `den`. Out of line: six calls a sphere and light.
-#[inline(never)]
+/// `den`. Out of line on ARMv6-M: six calls a sphere and light.
+#[cfg_attr(shadeline_short_mul, inline(never))]
 fn g_term(
     (w, v): (&[V3<i64>; 3], &[V3<i64>; 3]),
     (a, b): (usize, usize),
@@ -283,7 +283,7 @@ impl Divisor {
     /// `m·2^z` for a divisor of at most 64 significant bits; `None` for 0. The reciprocal
     /// comes from a 32-bit estimate and one Newton step `R + R·(2¹²⁷ − m·R)/2¹²⁷`
     /// (within `2⁻⁶⁰`), not from a 128-bit division.
-    #[inline(never)]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn new(m: u64, z: i32) -> Option<Self> {
         if m == 0 {
             return None;
