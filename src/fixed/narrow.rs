@@ -378,13 +378,12 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
     high + low
 }
 
-/// `a·b` of two `i32` vectors, exact ([`narrow_b`]'s products): the run set-up's dot
-/// products, one routine on ARMv6-M (its products inline) rather than three inline
-/// products at each.
+/// [`narrow_b`] (the exact `a·b` of two `i32` vectors) for the run set-up's dot products:
+/// one routine on ARMv6-M (its products inline) rather than three inline products at each.
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
 fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
-    mul_ii(a[0], b[0]) + mul_ii(a[1], b[1]) + mul_ii(a[2], b[2])
+    narrow_b(a, b)
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
@@ -460,12 +459,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         run.x = x;
         let d = Self::narrow_direction(view, x, y, self.width, self.height);
         let step = view.step_x.map(|c| 2 * c);
-        let dot = dot_i32;
         // |D + k·S|² = |D|² + k·2D·S + k²|S|²: the step from k to k + 1 is 2D·S + (2k + 1)|S|².
-        let ss = dot(step, step);
+        let ss = dot_i32(step, step);
         run.a = Step {
-            v: dot(d, d),
-            d: 2 * dot(d, step) + ss,
+            v: dot_i32(d, d),
+            d: 2 * dot_i32(d, step) + ss,
             dd: 2 * ss,
         };
         for (dl, light) in run.dl.iter_mut().zip(&self.lights) {
@@ -474,8 +472,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             };
             let l = to_light.map(|c| c.to_bits());
             *dl = Step {
-                v: dot(d, l),
-                d: dot(step, l),
+                v: dot_i32(d, l),
+                d: dot_i32(step, l),
                 dd: 0,
             };
         }

@@ -975,14 +975,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err((Item::Sphere(sphere), "center"));
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
-        let narrow = to_q29;
         // Steps below 2²⁸ (so `2·step` fits; a one-pixel-wide image leaves `step_x` unbounded
         // by the corner test below).
         let fits = |v: [i64; 3]| v.iter().all(|c| c.unsigned_abs() < 1 << 28);
         let (forward, step_x, step_y) = (
-            narrow(self.forward),
-            narrow(self.step_x),
-            narrow(self.step_y),
+            to_q29(self.forward),
+            to_q29(self.step_x),
+            to_q29(self.step_y),
         );
         if !(fits(step_x) && fits(step_y) && forward.iter().all(|c| c.unsigned_abs() < 1 << 30)) {
             return Err((Item::Camera, "vfov"));
