@@ -83,7 +83,17 @@ impl<P: Pixel> Background<P> {
         let mut chunks = tail.chunks_exact_mut(FILL_BLOCK);
         for chunk in &mut chunks {
             if let Ok(chunk) = <&mut [P; FILL_BLOCK]>::try_from(chunk) {
-                *chunk = block;
+                // Element by element, not `*chunk = block`: at `opt-level = "s"` that
+                // assignment is a `memcpy` call per block.
+                let [a, b, c, d, e, f, g, h] = block;
+                chunk[0] = a;
+                chunk[1] = b;
+                chunk[2] = c;
+                chunk[3] = d;
+                chunk[4] = e;
+                chunk[5] = f;
+                chunk[6] = g;
+                chunk[7] = h;
             }
         }
         for (px, b) in chunks.into_remainder().iter_mut().zip(block) {

@@ -160,9 +160,10 @@ impl<const S: usize, const L: usize> NarrowRun<S, L> {
     /// Moves the direction, `|D|²` and the first `lights` of `D·L` one pixel right.
     #[inline(always)]
     fn advance(&mut self, lights: usize) {
-        for (c, s) in self.d.iter_mut().zip(self.step) {
-            *c += s;
-        }
+        let [x, y, z] = self.step;
+        self.d[0] += x;
+        self.d[1] += y;
+        self.d[2] += z;
         self.a.v = self.a.v.wrapping_add(self.a.d);
         self.a.d = self.a.d.wrapping_add(self.a.dd);
         for dl in first(&mut self.dl, lights) {
@@ -688,9 +689,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             let arriving = light.arriving;
             if nl > 0 {
-                for (acc, i) in diffuse.iter_mut().zip(arriving) {
-                    *acc = acc.saturating_add(scale_q15(i, nl));
-                }
+                diffuse = each3(|c| diffuse[c].saturating_add(scale_q15(arriving[c], nl)));
                 lit = true;
             }
             let (h, trusted) = fast_h(sphere.blinn, nl, nv, ld);
@@ -701,9 +700,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 Some(lobe) => lobe,
                 None => self.precise_lobe(sphere, ns, e, d, light_index),
             };
-            for (acc, i) in specular.iter_mut().zip(arriving) {
-                *acc = acc.saturating_add(scale_q16(i, lobe));
-            }
+            specular = each3(|c| specular[c].saturating_add(scale_q16(arriving[c], lobe)));
             glossy = true;
         }
         let diffuse = if lit {
