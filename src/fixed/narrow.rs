@@ -859,7 +859,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // Only frames whose every sphere has narrow data take the narrow kernel.
         debug_assert!(narrow.is_some(), "sphere {} has no narrow data", hit.index);
         let radius = narrow.map_or(0, |n| n.radius);
-        let b = sphere.map_or(0, |s| narrow_b(s.eye_offset.map(|c| c.to_bits()), d));
+        // The shared products: only pixels with two hits come here.
+        use super::mul::mul_uu;
+        let b = sphere.map_or(0, |s| dot_i32(s.eye_offset.map(|c| c.to_bits()), d));
         // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
         let along = (mul_uu(((-b) >> 30) as u32, sigma as u32) >> 14) as i64;
         along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
