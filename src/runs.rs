@@ -64,10 +64,11 @@ impl<P: Pixel> Background<P> {
     /// Fills `out`, whose first pixel is column `x`.
     ///
     /// The first [`FILL_BLOCK`] pixels are written one by one, the rest as copies of that
-    /// block: an assignment of a fixed-size array, which compiles to a few word loads and
-    /// stores per block for every pixel format, with no call (`[P]::fill` is a loop per
-    /// element, and `memcpy` calls cost their set-up on every gap). The block is a multiple
-    /// of the dither pattern's period, 4, so every copy stays in phase.
+    /// block, stored element by element: a few loads and stores per block for every pixel
+    /// format at every optimisation level, with no call (`[P]::fill` is a loop per element,
+    /// `memcpy` calls cost their set-up on every gap, and at `opt-level = "s"` an array
+    /// assignment becomes one). The block is a multiple of the dither pattern's period, 4,
+    /// so every copy stays in phase.
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
     #[cfg_attr(shadeline_short_mul, inline(never))]
     pub(crate) fn fill(&self, out: &mut [P], x: usize) {
@@ -83,8 +84,6 @@ impl<P: Pixel> Background<P> {
         let mut chunks = tail.chunks_exact_mut(FILL_BLOCK);
         for chunk in &mut chunks {
             if let Ok(chunk) = <&mut [P; FILL_BLOCK]>::try_from(chunk) {
-                // Element by element, not `*chunk = block`: at `opt-level = "s"` that
-                // assignment is a `memcpy` call per block.
                 let [a, b, c, d, e, f, g, h] = block;
                 chunk[0] = a;
                 chunk[1] = b;

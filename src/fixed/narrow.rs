@@ -157,7 +157,9 @@ impl<const S: usize, const L: usize> NarrowRun<S, L> {
         }
     }
 
-    /// Moves the direction, `|D|²` and the first `lights` of `D·L` one pixel right.
+    /// Moves the direction, `|D|²` and the first `lights` of `D·L` one pixel right. The
+    /// direction's three components are written out: at `opt-level = "s"` a loop over
+    /// them stays a loop (as do the colour sums of `narrow_lights`, written with `each3`).
     #[inline(always)]
     fn advance(&mut self, lights: usize) {
         let [x, y, z] = self.step;
