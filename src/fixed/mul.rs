@@ -7,19 +7,18 @@
 //! `i64`/`u64` products. On ARMv6-M and ARMv8-M Baseline (`cfg(shadeline_short_mul)`, set by
 //! the build script), whose only multiplier is 32×32→32, a 64-bit product is otherwise a call
 //! to `__aeabi_lmul` (a full 64×64 product, about 40 instructions with the call); here it is
-//! four 16×16→32 `MULS` and the carries between them, inline: about 20 instructions.
+//! four 16×16→32 `MULS` and the carries between them, about 20 instructions, in one shared
+//! out-of-line routine per signedness ([`mul_uu`], [`mul_ii`], [`mul_iu`]).
 //!
-//! Inline, those sequences repeat in flash at every product, and most products are in code
-//! that runs a few times a frame (the prepare, the precise lobe; and the full-width kernel,
-//! which the firmware builds leave out). So on
-//! ARMv6-M there are two forms of each: [`mul_uu`], [`mul_ii`], [`mul_iu`] and
-//! [`leading_zeros`] are one shared out-of-line routine each (about ten instructions more a
-//! call, one copy in flash), and [`inline`]'s are the inline sequences, for the narrow kernel's
-//! per-pixel and per-run stages. In the M0 firmware the shared routines take 2,506 bytes off
-//! shadeline's code for 0.36% more instructions a frame. Elsewhere both forms are the same
-//! plain products.
+//! Out of line, not inline at each product, because that is both smaller and faster on
+//! ARMv6-M: a call costs about six instructions, but the sequence needs eight registers
+//! and the pixel loop has eight low ones, so an inline product spills the loop's state to
+//! the stack and reloads it. Measured on the M0 firmware's frame (QEMU counts), the shared
+//! routines against the sequences inline in the narrow kernel: 25,676 against 27,010 bytes
+//! of shadeline's code and 6,730,229 against 6,742,924 instructions at `opt-level = "s"`;
+//! 30,478 against 31,696 bytes and 6,566,236 against 6,619,899 instructions at 3.
 //!
-//! Both forms are exact, so a frame is the same bits on every target
+//! The routines are exact, so a frame is the same bits on every target
 //! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
 //!
 //! ARMv6-M has no `CLZ` either: `leading_zeros` is a call to `__clzsi2` (twice for a `u64`).
@@ -121,57 +120,15 @@ pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
 /// `a·b` for an `i64` and an `i32`, wrapping: the exact product wherever it fits `i64`
 /// (where its callers use it, their bounds say it does). `a = aₕ·2³² + aₗ` with `aₗ`
 /// unsigned: `aₕ·b` wraps into the high word, and `aₗ·b` is one exact 32×32→64 product, so
-/// on ARMv6-M it is five `MULS` inline instead of a call to `__aeabi_lmul`.
+/// on ARMv6-M it is one `MULS` and a call of [`mul_iu`]'s routine instead of a call to
+/// `__aeabi_lmul`.
 #[inline(always)]
 pub(crate) fn mul_wide(a: i64, b: i32) -> i64 {
     let high = ((a >> 32) as i32).wrapping_mul(b);
-    ((high as i64) << 32).wrapping_add(inline::mul_iu(b, a as u32))
+    ((high as i64) << 32).wrapping_add(mul_iu(b, a as u32))
 }
 
-/// The inline forms of the products, for the narrow kernel's per-pixel and per-run stages:
-/// the split sequences written out at each call on ARMv6-M, the plain products elsewhere.
-pub(crate) mod inline {
-    /// `a·b`, exact.
-    #[inline(always)]
-    pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
-        #[cfg(shadeline_short_mul)]
-        {
-            super::split_uu(a, b)
-        }
-        #[cfg(not(shadeline_short_mul))]
-        {
-            a as u64 * b as u64
-        }
-    }
-
-    /// `a·b`, exact.
-    #[inline(always)]
-    pub(crate) fn mul_ii(a: i32, b: i32) -> i64 {
-        #[cfg(shadeline_short_mul)]
-        {
-            super::split_ii(a, b)
-        }
-        #[cfg(not(shadeline_short_mul))]
-        {
-            a as i64 * b as i64
-        }
-    }
-
-    /// `a·b`, exact (`|a·b| < 2⁶³`).
-    #[inline(always)]
-    pub(crate) fn mul_iu(a: i32, b: u32) -> i64 {
-        #[cfg(shadeline_short_mul)]
-        {
-            super::split_iu(a, b)
-        }
-        #[cfg(not(shadeline_short_mul))]
-        {
-            a as i64 * b as i64
-        }
-    }
-}
-
-/// The shared out-of-line routines behind the default forms on ARMv6-M.
+/// The out-of-line routines behind the products and the count of leading zeros on ARMv6-M.
 #[cfg(shadeline_short_mul)]
 mod shared {
     #[inline(never)]

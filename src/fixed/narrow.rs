@@ -89,7 +89,7 @@
 
 use super::exact::{shift_saturating, Exact};
 use super::kernel::{half_vector, lobe_h, Shaded};
-use super::mul::inline::{mul_ii, mul_uu};
+use super::mul::{mul_ii, mul_iu, mul_uu};
 use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
 use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, Step};
 use super::roots::{inv_sqrt, sqrt};
@@ -382,7 +382,7 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
 }
 
 /// [`narrow_b`] (the exact `a·b` of two `i32` vectors) for the run set-up's dot products:
-/// one routine on ARMv6-M (its products inline) rather than three inline products at each.
+/// one routine on ARMv6-M rather than three products and their sums at each (336 bytes).
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
 fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
@@ -743,8 +743,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(FixedLight::Distant { to_light, .. }) = self.lights.get(light) else {
             return 0;
         };
-        // Products by the shared routines: this runs for a few pixels a frame.
-        use super::mul::{mul_ii, mul_iu, mul_uu};
         let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
         let Some((ya, sa)) = inv_sqrt(a) else {
             return 0;
@@ -772,7 +770,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The unit normal (Q15) of a narrow hit, for caster tests: `N = D̂ × u − (N·V)·D̂` with
     /// `u = (oc × D)·σ/(r·2²⁹)` from six exact 32×32→64 products. Out of line on ARMv6-M,
-    /// where those are long inline sequences and the pixel loop needs its registers.
+    /// where the pixel loop needs its registers.
     #[cfg_attr(shadeline_short_mul, inline(never))]
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
     fn narrow_normal(
@@ -851,7 +849,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
     /// two: `−b/|D| − r·(N·V)`. Only pixels with two hits need it; on ARMv6-M, whose 64-bit
-    /// products are long inline sequences, it is not inlined, which keeps them out of the
+    /// products are calls of shared routines, it is not inlined, which keeps them out of the
     /// pixel loop's code and registers.
     #[cfg_attr(shadeline_short_mul, inline(never))]
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
@@ -861,8 +859,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // Only frames whose every sphere has narrow data take the narrow kernel.
         debug_assert!(narrow.is_some(), "sphere {} has no narrow data", hit.index);
         let radius = narrow.map_or(0, |n| n.radius);
-        // The shared products: only pixels with two hits come here.
-        use super::mul::mul_uu;
         let b = sphere.map_or(0, |s| dot_i32(s.eye_offset.map(|c| c.to_bits()), d));
         // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
         let along = (mul_uu(((-b) >> 30) as u32, sigma as u32) >> 14) as i64;

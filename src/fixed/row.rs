@@ -13,7 +13,7 @@ use super::edges::EdgeRow;
 #[cfg(feature = "full-width")]
 use super::kernel::{ray, Shaded};
 #[cfg(feature = "full-width")]
-use super::mul::inline::{mul_ii, mul_iu};
+use super::mul::{mul_ii, mul_iu};
 use super::narrow::{Narrow, NarrowRun};
 use super::prepare::PreparedFixed;
 #[cfg(feature = "full-width")]
@@ -77,8 +77,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
     /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
     /// same bits as [`Self::direction`]. Only the pixels the narrow kernel gives back need
-    /// it; on ARMv6-M, where its six products are long inline sequences, it is not inlined
-    /// into the pixel loop.
+    /// it; on ARMv6-M, where its six products are calls, it is not inlined into the pixel
+    /// loop.
     #[cfg_attr(shadeline_short_mul, inline(never))]
     fn narrow_direction_wide(&self, x: u32, y: u32) -> V3<I16F48> {
         // |dx|, |dy| ≤ 2·MAX_DIMENSION + 1 < 2³¹.
