@@ -11,9 +11,9 @@
 //! out-of-line routine per signedness ([`mul_uu`], [`mul_ii`], [`mul_iu`]).
 //!
 //! Out of line, not inline at each product, because that is both smaller and faster on
-//! ARMv6-M: a call costs about six instructions, but the sequence needs eight registers
-//! and the pixel loop has eight low ones, so an inline product spills the loop's state to
-//! the stack and reloads it. Measured on the M0 firmware's frame (QEMU counts), the shared
+//! ARMv6-M: a call costs a few instructions, and an inline sequence needs eight registers
+//! where the pixel loop has eight low ones for all its state (the likely reason the inline
+//! form was slower; the figures are what was measured). Measured on the M0 firmware's frame (QEMU counts), the shared
 //! routines against the sequences inline in the narrow kernel: 25,676 against 27,010 bytes
 //! of shadeline's code and 6,730,229 against 6,742,924 instructions at `opt-level = "s"`;
 //! 30,478 against 31,696 bytes and 6,566,236 against 6,619,899 instructions at 3.
