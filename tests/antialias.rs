@@ -5,7 +5,7 @@
 
 #![cfg(feature = "antialias")]
 
-mod common;
+use crate::common;
 
 use common::{frame, random_scenes, random_scenes_all_models};
 use shadeline::*;

@@ -9,7 +9,7 @@
 //! the feature on for every test build, so `cargo test --workspace` runs these tests, and a
 //! build without the feature fails here instead of skipping them.
 
-mod common;
+use crate::common;
 use common::*;
 use embedded_graphics_core::pixelcolor::{self, PixelColor};
 use embedded_graphics_core::pixelcolor::{GrayColor, IntoStorage, RgbColor};

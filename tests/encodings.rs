@@ -11,7 +11,7 @@
 //! CI runs this file on the default target CPU and, with `.ci/bit-identity`, on the SSE2
 //! baseline, with `-C target-cpu=native`, on aarch64 (NEON) and on wasm32 (simd128).
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::encoding::{encode_levels, linear_code, linear_code_fixed};
 use shadeline::*;

@@ -8,7 +8,7 @@
 //! each sphere's own pixels (those the reference sees on it), so a small sphere cannot hide
 //! its errors in a large frame. Run with `-- --nocapture` to see the tables.
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::reference::{self, RefPixel};
 use shadeline::*;

@@ -8,7 +8,7 @@
 //! only right if the fixed kernel's arithmetic was changed on purpose, and then every
 //! target's value changes with it.
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::*;
 

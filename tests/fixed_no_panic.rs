@@ -13,7 +13,7 @@
 //! rendered in every format (Rgb565, Bgr565, Rgb888, Gray8, hit records, byte rows) with one
 //! of the four encodings.
 
-mod common;
+use crate::common;
 use common::*;
 use proptest::prelude::*;
 use proptest::strategy::ValueTree;

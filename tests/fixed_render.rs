@@ -2,7 +2,7 @@
 //! in any order give the same frame, bad requests and out-of-range scenes are refused with
 //! the same typed errors as the float path.
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::*;
 

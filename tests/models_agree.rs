@@ -14,7 +14,7 @@
 //! moon, the rough-models gallery and the same random scenes. Run with `-- --nocapture` for
 //! the tables.
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::*;
 

@@ -4,7 +4,7 @@
 //! target CPU (x86-64-v3) and, with `.ci/bit-identity`, on the SSE2 baseline, with
 //! `-C target-cpu=native`, on aarch64 (NEON, under QEMU) and on wasm32 (simd128).
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::*;
 

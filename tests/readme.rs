@@ -2,7 +2,7 @@
 //! them (an untinted highlight, a point light's `colour·intensity / (4π r²)`), what its two
 //! pictures of the exponent series show, and the facts it repeats from `Cargo.toml`.
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::*;
 

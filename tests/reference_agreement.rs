@@ -2,7 +2,7 @@
 //! agree (same sphere hit, same lights blocked), every channel is within one 8-bit level;
 //! pixels whose decisions differ are at most 0.05 % of a frame.
 
-mod common;
+use crate::common;
 use common::*;
 use shadeline::*;
 

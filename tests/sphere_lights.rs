@@ -4,7 +4,7 @@
 //! does, a tiny one is the point light, highlights widen and shadows soften as it grows, and
 //! the number of directions it takes is enough for half an 8-bit level.
 
-mod common;
+use crate::common;
 
 use shadeline::reference::{shade_pixel, shade_pixel_with_strata, RefPixel, SPHERE_LIGHT_STRATA};
 use shadeline::{

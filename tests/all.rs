@@ -1,0 +1,25 @@
+//! Every integration test of shadeline, as the modules of one test binary: the renderers are
+//! generic over path, lane width, capacities and pixel format, and one crate instantiates
+//! them once for all the files, where a binary per file compiles and links its own copies
+//! of each. `common` holds the helpers the files share. (`checks/bit-identity` builds four of
+//! these files the same way, for other instruction sets.)
+
+mod common;
+
+mod antialias;
+mod bad_input;
+mod brdf_laws;
+mod capacities;
+mod eg_drawable;
+mod encodings;
+mod firmware_crcs;
+mod fixed_agreement;
+mod fixed_golden;
+mod fixed_no_panic;
+mod fixed_render;
+mod models_agree;
+mod paths_agree;
+mod readme;
+mod reference_agreement;
+mod scene_validation;
+mod sphere_lights;
