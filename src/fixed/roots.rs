@@ -49,8 +49,7 @@ pub(crate) fn inv_sqrt(x: u64) -> Option<(u32, u32)> {
     if x == 0 {
         return None;
     }
-    let (u, half_shift) = top_bits(x);
-    let y = refine(u, initial(u));
+    let (_, y, half_shift) = estimate(x);
     Some((y, 62 - half_shift))
 }
 
@@ -60,12 +59,22 @@ pub(crate) fn sqrt(x: u64) -> u64 {
     if x == 0 {
         return 0;
     }
-    let (u, half_shift) = top_bits(x);
-    let y = refine(u, initial(u));
+    let (u, y, half_shift) = estimate(x);
     // √u = u·(1/√u): U2F30 × U1F31 = F61, down to F31: √u·2³¹ in [2³¹, 2³²).
     let root = mul_uu(u, y) >> 30;
     // x·2^(2·half_shift) ≈ u·2³² with u = √u-value²·2³⁰, so √x = (√u-value·2³¹)·2^-half_shift.
     root >> half_shift
+}
+
+/// The shared part of [`inv_sqrt`] and [`sqrt`] for `x > 0`: `(u, y, half_shift)` with `u`
+/// the top bits of `x` ([`top_bits`]) and `y ≈ 2³¹/√u` in U1F31 ([`refine`]). One copy on
+/// ARMv6-M, for its flash (the prepare, the precise lobe and the vector normalization take
+/// square roots, none of them per pixel); inlined elsewhere.
+#[cfg_attr(shadeline_short_mul, inline(never))]
+#[cfg_attr(not(shadeline_short_mul), inline(always))]
+fn estimate(x: u64) -> (u32, u32, u32) {
+    let (u, half_shift) = top_bits(x);
+    (u, refine(u, initial(u)), half_shift)
 }
 
 /// The top 32 bits of `x` after an even left shift, `u` in `[2³⁰, 2³²)` (a U2F30 value in
