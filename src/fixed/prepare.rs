@@ -200,74 +200,43 @@ fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
     (h * (1u64 << 31) as f32) as u32
 }
 
+/// The index pairs `(a, b)` of a quadric's coefficients in the order of [`Quadric::c`]:
+/// `c₀₀` from the directions `(0, 0)`, `c₁₀` from `(0, 1)` …, `c₀₂` from `(2, 2)`.
+const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+
 /// The quadric `E′` over `den`, from `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|²` (see [`Quadric`])
 /// with `D = dc + x·sx + y·sy` (`dirs`), `r²` and `w`, the cross products of `oc` with the
-/// three directions: each raw coefficient is a product of the directions' Gram matrix and
-/// of `w`, exact in `i128`, divided as soon as it is made (one `i128` at a time on the
-/// stack).
+/// three directions: each raw coefficient, `r²·(Dₐ·D_b) − wₐ·w_b` (doubled off the
+/// diagonal), is a product of the directions' Gram matrix and of `w`, exact in `i128`,
+/// divided as soon as it is made (one `i128` at a time on the stack). A loop over
+/// [`PAIRS`], for the flash: once per sphere.
 #[inline(never)]
 fn e_quadric(r2: i64, w: &[V3<i64>; 3], dirs: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
-    let term = |a: usize, b: usize, twice: bool| e_term(r2, (w, dirs), (a, b), twice, den);
-    Some(Quadric {
-        c: [
-            term(0, 0, false)?,
-            term(0, 1, true)?,
-            term(0, 2, true)?,
-            term(1, 1, false)?,
-            term(1, 2, true)?,
-            term(2, 2, false)?,
-        ],
-    })
-}
-
-/// One coefficient of [`e_quadric`]: `r²·(Dₐ·D_b) − wₐ·w_b` over `den`, doubled if
-/// `twice`. Out of line on ARMv6-M: six calls a sphere.
-#[cfg_attr(shadeline_short_mul, inline(never))]
-fn e_term(
-    r2: i64,
-    (w, dirs): (&[V3<i64>; 3], &[V3<i64>; 3]),
-    (a, b): (usize, usize),
-    twice: bool,
-    den: &Divisor,
-) -> Option<i64> {
-    let (u, v) = (dirs[a % 3], dirs[b % 3]);
-    let dot = each3(|k| mul_ii(u[k] as i32, v[k] as i32));
-    let c = mul_128(r2, dot[0] + dot[1] + dot[2]) - dot_128(w[a % 3], w[b % 3]);
-    den.divide(if twice { 2 * c } else { c })
+    let mut c = [0; 6];
+    for (slot, &(a, b)) in c.iter_mut().zip(&PAIRS) {
+        let (u, v) = (dirs[a % 3], dirs[b % 3]);
+        let dot = each3(|k| mul_ii(u[k] as i32, v[k] as i32));
+        let raw = mul_128(r2, dot[0] + dot[1] + dot[2]) - dot_128(w[a % 3], w[b % 3]);
+        *slot = den.divide(if a == b { raw } else { 2 * raw })?;
+    }
+    Some(Quadric { c })
 }
 
 /// The quadric `G` over `den`, from `G·r·2⁸⁸ = (oc × D)·(L × D)` (see [`Quadric`]) with `w`
 /// and `v` the cross products of `oc` and of `L` with the three directions of
-/// [`e_quadric`], exact in `i128` and divided one at a time.
+/// [`e_quadric`]: each raw coefficient `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal), exact
+/// in `i128`, divided one at a time.
 #[inline(never)]
 fn g_quadric(w: &[V3<i64>; 3], v: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
-    let term = |a: usize, b: usize| g_term((w, v), (a, b), den);
-    Some(Quadric {
-        c: [
-            term(0, 0)?,
-            term(0, 1)?,
-            term(0, 2)?,
-            term(1, 1)?,
-            term(1, 2)?,
-            term(2, 2)?,
-        ],
-    })
-}
-
-/// One coefficient of [`g_quadric`]: `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal) over
-/// `den`. Out of line on ARMv6-M: six calls a sphere and light.
-#[cfg_attr(shadeline_short_mul, inline(never))]
-fn g_term(
-    (w, v): (&[V3<i64>; 3], &[V3<i64>; 3]),
-    (a, b): (usize, usize),
-    den: &Divisor,
-) -> Option<i64> {
-    let c = if a == b {
-        dot_128(w[a % 3], v[a % 3])
-    } else {
-        dot_128(w[a % 3], v[b % 3]) + dot_128(w[b % 3], v[a % 3])
-    };
-    den.divide(c)
+    let mut c = [0; 6];
+    for (slot, &(a, b)) in c.iter_mut().zip(&PAIRS) {
+        let mut raw = dot_128(w[a % 3], v[b % 3]);
+        if a != b {
+            raw += dot_128(w[b % 3], v[a % 3]);
+        }
+        *slot = den.divide(raw)?;
+    }
+    Some(Quadric { c })
 }
 
 /// A positive divisor `m·2^z` held as `⌊(2¹²⁷ − 1)/m⌋` with `m` in `[2⁶³, 2⁶⁴)`, so that a
