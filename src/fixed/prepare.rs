@@ -271,21 +271,36 @@ impl Divisor {
         })
     }
 
-    /// `c` over the divisor, within two units (the dividend is taken to its top 63 bits and
-    /// the reciprocal has 64); `None` if it does not fit `i64`.
+    /// `c` over the divisor, within two units plus `2⁻⁶⁰` of the quotient (the dividend is
+    /// taken to its top 63 bits, the reciprocal is within `2⁻⁶⁰`; test
+    /// `divisor_within_two_units_of_the_quotient`); `None` if it does not fit `i64`.
     #[inline(never)]
     fn divide(&self, c: i128) -> Option<i64> {
         let t = (128 - c.unsigned_abs().leading_zeros()).saturating_sub(63);
-        let p = mul_128_u(i64::try_from(c >> t).ok()?, self.recip);
+        let p = mul_128_u(shift_to_i64(c, t)?, self.recip);
         // c/(m·2^z) = (c >> t)·2^t·recip·2⁻¹²⁷·2^-z.
         let s = t as i32 - 127 - self.z;
-        let q = if s >= 0 {
-            let q = p.checked_shl(s as u32)?;
-            (q >> s == p).then_some(q)?
-        } else {
-            p >> (-s).min(127)
-        };
-        i64::try_from(q).ok()
+        if s >= 0 {
+            // recip ≥ 2⁶³, so p is 0 or at least 2⁶³ in magnitude: shifted left, it fits
+            // `i64` only as 0.
+            return (p == 0).then_some(0);
+        }
+        shift_to_i64(p, (-s).min(127) as u32)
+    }
+}
+
+/// `x >> k` for `k ≤ 127`, if it fits `i64`. From the two 64-bit halves: on a 32-bit core
+/// a variable shift of an `i128` is a long inline sequence, of an `i64` one call.
+fn shift_to_i64(x: i128, k: u32) -> Option<i64> {
+    let (high, low) = ((x >> 64) as i64, x as u64);
+    match k {
+        0 => (high == (low as i64) >> 63).then_some(low as i64),
+        1..=63 => {
+            // x >> k fits iff x >> (k + 63) = high >> (k − 1) is 0 or −1.
+            let top = high >> (k - 1);
+            (top == 0 || top == -1).then_some((((high as u64) << (64 - k)) | (low >> k)) as i64)
+        }
+        _ => Some(high >> (k - 64).min(63)),
     }
 }
 
@@ -1207,5 +1222,73 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[cfg(all(feature = "antialias", feature = "full-width"))]
     pub fn set_antialiasing(&mut self, on: bool) {
         self.antialias = on;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Values at and around every power of two of both signs, and a xorshift stream.
+    fn values() -> impl Iterator<Item = i128> {
+        let edges = (0..127).flat_map(|k| {
+            let p = 1i128 << k;
+            [p - 1, p, p.wrapping_add(1), -p - 1, -p, -p + 1]
+        });
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let stream = core::iter::repeat_with(move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        });
+        let mut halves = stream.clone();
+        let random = stream.take(2000).map(move |h| {
+            let l = halves.next().unwrap_or(0);
+            (((h as u128) << 64 | l as u128) as i128) >> (h % 120)
+        });
+        edges.chain([0, i128::MAX, i128::MIN]).chain(random)
+    }
+
+    #[test]
+    fn shift_to_i64_is_the_checked_shift() {
+        for x in values() {
+            for k in 0..=127 {
+                assert_eq!(shift_to_i64(x, k), i64::try_from(x >> k).ok(), "{x} >> {k}");
+            }
+        }
+    }
+
+    #[test]
+    fn divisor_within_two_units_of_the_quotient() {
+        for (m, z) in [(1u64, 0), (3, 5), (1 << 40, -20), (u64::MAX, 31), (0x1234_5678_9abc, 13)] {
+            let den = Divisor::new(m, z).expect("not zero");
+            for c in values() {
+                // The exact quotient c/(m·2^z), where it fits i64.
+                let exact = if z >= 0 {
+                    (c >> z) / m as i128
+                } else {
+                    match c.checked_mul(1 << -z) {
+                        Some(scaled) => scaled / m as i128,
+                        None => continue,
+                    }
+                };
+                let Ok(exact) = i64::try_from(exact) else {
+                    continue;
+                };
+                let got = den.divide(c);
+                let Some(got) = got else {
+                    // Refused only at the edge of the range.
+                    assert!(exact.unsigned_abs() > (1 << 62), "{c}/({m}·2^{z}) refused");
+                    continue;
+                };
+                // Two units, and 2⁻⁶⁰ of the quotient for the reciprocal's own error.
+                let bound = 2 + (exact.unsigned_abs() >> 60);
+                assert!(
+                    got.abs_diff(exact) <= bound,
+                    "{c}/({m}·2^{z}): {got} against {exact}"
+                );
+            }
+        }
     }
 }
