@@ -1236,15 +1236,14 @@ mod tests {
             [p - 1, p, p.wrapping_add(1), -p - 1, -p, -p + 1]
         });
         let mut x = 0x9e37_79b9_7f4a_7c15u64;
-        let stream = core::iter::repeat_with(move || {
+        let mut next = move || {
             x ^= x << 13;
             x ^= x >> 7;
             x ^= x << 17;
             x
-        });
-        let mut halves = stream.clone();
-        let random = stream.take(2000).map(move |h| {
-            let l = halves.next().unwrap_or(0);
+        };
+        let random = (0..2000).map(move |_| {
+            let (h, l) = (next(), next());
             (((h as u128) << 64 | l as u128) as i128) >> (h % 120)
         });
         edges.chain([0, i128::MAX, i128::MIN]).chain(random)
