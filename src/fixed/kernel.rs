@@ -427,6 +427,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The spheres that can block light `light` from reaching sphere `index` (bit `k` for
     /// sphere `k`; spheres from index 32 on are always tested), prepared per frame.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     pub(crate) fn casters(&self, index: usize, light: usize) -> u32 {
         debug_assert!(index < self.casters.len(), "casters of sphere {index}");

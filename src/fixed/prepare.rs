@@ -381,8 +381,8 @@ pub(crate) struct NarrowLight {
     pub g: Quadric,
     /// The light's arriving colour (U16F16 bits).
     pub arriving: [u32; 3],
-    /// The spheres that can shadow the sphere from this light (see
-    /// [`PreparedFixed::casters`]).
+    /// The spheres that can shadow the sphere from this light (bit `k` for sphere `k`, see
+    /// `PreparedFixed::narrow_casters`).
     pub casters: u32,
     /// `N·L` (Q15) at or above this: no caster is ahead.
     pub ahead: i32,
@@ -508,7 +508,9 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) spheres: heapless::Vec<FixedSphere, S>,
     pub(crate) lights: heapless::Vec<FixedLight, L>,
     /// Per sphere and light, the other spheres that can shadow it
-    /// ([`Scene::shadow_casters`]).
+    /// ([`Scene::shadow_casters`]), for the full-width kernel (the narrow kernel's are in
+    /// `narrow_lights`).
+    #[cfg(feature = "full-width")]
     pub(crate) casters: heapless::Vec<[u32; L], S>,
     /// The primary directions in the narrow kernel's form, if the frame uses it.
     pub(crate) narrow: Option<NarrowView>,
@@ -609,6 +611,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         background: [0; 3],
         spheres: heapless::Vec::new(),
         lights: heapless::Vec::new(),
+        #[cfg(feature = "full-width")]
         casters: heapless::Vec::new(),
         narrow: None,
         narrow_lights: heapless::Vec::new(),
@@ -656,6 +659,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.height = 0;
         self.spheres.clear();
         self.lights.clear();
+        #[cfg(feature = "full-width")]
         self.casters.clear();
         self.narrow = None;
         self.narrow_lights.clear();
@@ -872,6 +876,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             debug_assert!(pushed.is_ok(), "light {i} beyond the prepared capacity");
         }
 
+        #[cfg(feature = "full-width")]
         for i in 0..scene.spheres().len() {
             let mut per_light = [0u32; L];
             for (mask, light) in per_light.iter_mut().zip(scene.lights()) {
@@ -916,27 +921,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         Ok(())
     }
 
-    /// The first sphere closer than `4ε` to the surface of a sphere that can shadow it (the
-    /// narrow kernel's caster test assumes its shadow rays start outside them), if any.
-    fn casters_not_apart(&self) -> Option<usize> {
-        let eps = self.epsilon.to_bits() as i64;
-        let radius = |s: &FixedSphere| (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
-        self.spheres
-            .iter()
-            .zip(&self.casters)
-            .position(|(s, masks)| {
-                let mask = masks.iter().fold(0, |a, m| a | m);
-                !self.spheres.iter().enumerate().all(|(k, c)| {
-                    if k >= 32 || mask & (1 << k) == 0 {
-                        return k < 32 || core::ptr::eq(s, c);
-                    }
-                    let d = each3(|i| s.center[i].to_bits() as i64 - c.center[i].to_bits() as i64);
-                    let apart = radius(s) + radius(c) + 4 * eps;
-                    d.iter().map(|&v| v * v).sum::<i64>() > apart * apart
-                })
-            })
-    }
-
     /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions, or
     /// says which item and field keep it from them (the first found).
     #[inline(never)]
@@ -954,9 +938,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // The narrow run indexes its tracks by `u8`.
         if self.spheres.len() > 256 {
             return Err((Item::Sphere(256), "center"));
-        }
-        if let Some(sphere) = self.casters_not_apart() {
-            return Err((Item::Sphere(sphere), "center"));
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
         // Steps below 2²⁸ (so `2·step` fits; a one-pixel-wide image leaves `step_x` unbounded
@@ -1068,9 +1049,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err("radius");
         }
         for light_index in 0..self.lights.len().min(L) {
-            let light = self
-                .narrow_light(i, light_index, (&w, &dirs), &g_den)
-                .ok_or("radius")?;
+            let light = self.narrow_light(i, light_index, (&w, &dirs), &g_den)?;
             match self
                 .narrow_lights
                 .get_mut(i)
@@ -1118,8 +1097,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// Sphere `i`'s narrow constants for light `light`, from the cross products `w` of its
-    /// eye offset with the quadrics' three directions `dirs` (see [`e_quadric`]); `None` if
-    /// the light is not distant or `G` does not fit. Out of line, like the sphere's.
+    /// eye offset with the quadrics' three directions `dirs` (see [`e_quadric`]); the field
+    /// that keeps the sphere from the narrow kernel if the light is not distant, `G` does not
+    /// fit (`radius`) or a caster is too close (`center`, see [`Self::narrow_casters`]). Out
+    /// of line, like the sphere's.
     #[inline(never)]
     fn narrow_light(
         &self,
@@ -1127,51 +1108,79 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         light: usize,
         (w, dirs): (&[V3<i64>; 3], &[V3<i64>; 3]),
         g_den: &Divisor,
-    ) -> Option<NarrowLight> {
+    ) -> Result<NarrowLight, &'static str> {
         let Some(FixedLight::Distant { to_light, arriving }) = self.lights.get(light) else {
-            return None;
+            return Err("radius");
         };
         let l = to_light.map(|c| c.to_bits() as i64);
-        let g = g_quadric(w, &dirs.map(|d| cross_64(l, d)), g_den)?;
-        let (ahead, reach) = self.caster_filter(i, light, *to_light);
-        Some(NarrowLight {
+        let g = g_quadric(w, &dirs.map(|d| cross_64(l, d)), g_den).ok_or("radius")?;
+        let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
+        Ok(NarrowLight {
             g,
             arriving: arriving.map(|c| c.to_bits()),
-            casters: self.casters(i, light),
+            casters,
             ahead,
             reach,
         })
     }
 
-    /// The caster filter of [`NarrowLight`] for sphere `i` and light `light`
-    /// (`to_light`): `(ahead, reach)`, the loosest over the sphere's casters, widened by
-    /// the fast `N·L`'s error (`2⁻¹²`, and `2⁻¹¹` for its square). With no caster nothing
-    /// passes. Out of line: `f32` work once per sphere and light.
+    /// The casters of sphere `i` for the distant light `to_light` and their filter, as
+    /// [`NarrowLight`] holds them: `(casters, ahead, reach)`. One pass over the other
+    /// spheres, on the frame's scaled numbers.
+    ///
+    /// A shadow ray from the sphere's surface, lifted by `ε`, starts within `r + ε` of the
+    /// half-line from its centre toward the light, so only a sphere whose centre comes within
+    /// `r + r_k + ε` of that half-line can block it. The mask takes the spheres within
+    /// `r + r_k + 5ε` and `10⁻³` of the radii (the rule of [`Scene::shadow_casters`], whose
+    /// margins dwarf this `f32` arithmetic's rounding), so it is never short of a caster.
+    /// `ahead` and `reach` are the loosest over the casters, widened by the fast `N·L`'s error
+    /// (`2⁻¹²`, and `2⁻¹¹` for its square); with no caster nothing passes.
+    ///
+    /// `None` if a caster is within `4ε` of the sphere (the narrow kernel's caster test
+    /// assumes its shadow rays start outside the casters; checked exactly, in integers), or
+    /// the frame has spheres beyond the mask's 32 bits. Out of line: once per sphere and
+    /// light.
     #[inline(never)]
-    fn caster_filter(&self, i: usize, light: usize, to_light: V3<Unit>) -> (i32, u32) {
-        let Some(own) = self.spheres.get(i) else {
-            return (i32::MIN, 0);
-        };
-        let mask = self
-            .casters
-            .get(i)
-            .and_then(|c| c.get(light))
-            .copied()
-            .unwrap_or(u32::MAX);
+    fn narrow_casters(&self, i: usize, to_light: V3<Unit>) -> Option<(u32, i32, u32)> {
+        let own = self.spheres.get(i)?;
+        let eps = self.epsilon.to_bits() as i64;
+        let radius = |s: &FixedSphere| (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
+        let r = radius(own);
         let l = to_light.map(|c| to_f32(c.to_bits() as i64, 30));
-        let lift = libm::sqrtf(to_f32(own.radius_sq.to_bits(), 32))
-            + to_f32(self.epsilon.to_bits() as i64, 16);
-        let (mut ahead, mut reach) = (f32::NEG_INFINITY, f32::NEG_INFINITY);
+        let eps_f = to_f32(eps, 16);
+        let lift = to_f32(r, 16) + eps_f;
+        let (mut mask, mut ahead, mut reach) = (0u32, f32::NEG_INFINITY, f32::NEG_INFINITY);
         for (k, c) in self.spheres.iter().enumerate() {
-            if k == i || (k < 32 && mask & (1 << k) == 0) {
+            if k == i {
                 continue;
             }
-            let delta = each3(|j| to_f32((own.center[j] - c.center[j]).to_bits() as i64, 16));
+            if k >= 32 {
+                return None;
+            }
+            let rk = radius(c);
+            let d = each3(|j| own.center[j].to_bits() as i64 - c.center[j].to_bits() as i64);
+            let delta = d.map(|v| to_f32(v, 16));
             let along = delta[0] * l[0] + delta[1] * l[1] + delta[2] * l[2];
             let across = each3(|j| delta[j] - along * l[j]);
-            let across =
-                libm::sqrtf(across[0] * across[0] + across[1] * across[1] + across[2] * across[2]);
-            let gap = across - libm::sqrtf(to_f32(c.radius_sq.to_bits(), 32));
+            let across2 = across[0] * across[0] + across[1] * across[1] + across[2] * across[2];
+            // The half-line's closest point to the caster's centre: its start where the
+            // caster lies behind the sphere along the light (`along ≥ 0`).
+            let dist2 = if along < 0.0 {
+                across2
+            } else {
+                delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2]
+            };
+            let radii = to_f32(r + rk, 16);
+            let near = radii + 5.0 * eps_f + 1.0e-3 * radii;
+            if dist2 >= near * near {
+                continue;
+            }
+            mask |= 1 << k;
+            let apart = r + rk + 4 * eps;
+            if d.iter().map(|&v| v * v).sum::<i64>() <= apart * apart {
+                return None;
+            }
+            let gap = libm::sqrtf(across2) - to_f32(rk, 16);
             ahead = ahead.max(-along / lift);
             reach = reach.max(if gap <= 0.0 {
                 1.0
@@ -1179,12 +1188,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 1.0 - (gap / lift) * (gap / lift)
             });
         }
-        if ahead == f32::NEG_INFINITY {
-            return (i32::MIN, 0);
+        if mask == 0 {
+            return Some((0, i32::MIN, 0));
         }
         let q15 = (ahead + 1.0 / 4096.0).clamp(-2.0, 2.0) * 32768.0;
         let q30 = (reach + 1.0 / 2048.0).clamp(0.0, 2.0) * (1u64 << 30) as f32;
-        (q15 as i32, q30 as u32)
+        Some((mask, q15 as i32, q30 as u32))
     }
 
     /// Turns the screen-rectangle spans on (the default) or off. Off, every pixel tests every
