@@ -439,10 +439,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let Some(span) = front_part(x.max(span.start), span.end, n.b_rises, b_at) else {
                 continue;
             };
-            let (y_offset, x_offset) = (
-                dy.wrapping_sub(n.origin.1),
-                (2 * span.start as i32 + 1 - self.width as i32).wrapping_sub(n.origin.0),
-            );
+            let (y_offset, x_offset) = (dy, 2 * span.start as i32 + 1 - self.width as i32);
             let mut g = [Step::default(); L];
             for (g, light) in g.iter_mut().zip(lights).take(self.lights.len()) {
                 *g = light.g.step_at_cell(y_offset, x_offset);

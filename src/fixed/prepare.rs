@@ -87,11 +87,16 @@ fn to_q29(v: V3<I16F48>) -> [i64; 3] {
     v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19)
 }
 
-/// A quadratic in a pixel's offsets from a sphere's origin column and row, in half pixels:
-/// `q = c₀₀ + c₁₀·x + c₀₁·y + c₂₀·x² + c₁₁·x·y + c₀₂·y²` with `x = dx − X₀`, `y = dy − Y₀`
-/// (see [`NarrowSphere::origin`]), integer coefficients. Evaluated exactly: along a row it is
-/// a quadratic in the column, which the narrow kernel forward-differences with two additions
-/// per pixel.
+/// A quadratic in a pixel's half-pixel offsets `dx = 2x + 1 − w`, `dy = h − 2y − 1` from the
+/// centre of the screen: `q = c₀₀ + c₁₀·dx + c₀₁·dy + c₂₀·dx² + c₁₁·dx·dy + c₀₂·dy²`, integer
+/// coefficients. Evaluated exactly: along a row it is a quadratic in the column, which the
+/// narrow kernel forward-differences with two additions per pixel.
+///
+/// The centre of the screen is the expansion point for every sphere. The coefficients'
+/// rounding (each within a few units of the quadric's held scale, see [`NarrowSphere`])
+/// then weighs with the square of a pixel's distance from it, at most the frame's size,
+/// which no other point improves for a sphere that fills the frame; on the exponent series
+/// the frame is the same bits as with each sphere's own middle as the point.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub(crate) struct Quadric {
     /// `[c₀₀, c₁₀, c₀₁, c₂₀, c₁₁, c₀₂]`.
@@ -108,7 +113,7 @@ pub(crate) struct Step {
 }
 
 impl Quadric {
-    /// The quadric along the row `y` (offset from the origin row): `(e₀, e₁, e₂)` with
+    /// The quadric along the row at offset `y` (`dy`): `(e₀, e₁, e₂)` with
     /// `q = e₀ + e₁·x + e₂·x²`. Wrapping arithmetic: every partial sum is a value (or half a
     /// difference) of the quadric inside the frame, which its scale keeps within `2⁶²`.
     #[inline(always)]
@@ -359,9 +364,6 @@ pub(crate) struct NarrowSphere {
     pub radius: u32,
     /// Whether `b = oc·D` grows along a row (`oc·step_x > 0`).
     pub b_rises: bool,
-    /// The quadrics' origin `(X₀, Y₀)`: the half-pixel offsets `dx`, `dy` of a pixel at the
-    /// middle of the sphere's screen rectangle.
-    pub origin: (i32, i32),
     /// `E′`, see above.
     pub e: Quadric,
 }
@@ -1001,10 +1003,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(s) = self.spheres.get(i) else {
             return Err("center");
         };
-        let (eye_offset, radius_sq, bounds, ks) = (s.eye_offset, s.radius_sq, s.bounds, s.ks);
+        let (eye_offset, radius_sq, ks) = (s.eye_offset, s.radius_sq, s.ks);
         let eps = self.epsilon.to_bits() as i64;
         let (sx, sy) = (view.step_x.map(|c| c as i64), view.step_y.map(|c| c as i64));
-        let (width, height) = (self.width as i32, self.height as i32);
         let oc = eye_offset.map(|c| c.to_bits() as i64);
         let r = (radius_sq.to_bits().max(0) as u64).isqrt() as i64;
         // |oc|² < 3·2⁶⁰: the scene lies within 2¹³ units.
@@ -1012,13 +1013,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
             return Err("center");
         }
-        // The quadrics' origin: the middle of the screen rectangle, in the frame.
-        let (x0, y0) = bounds.map_or((0, 0), |b| {
-            let x = ((b.cols.start + b.cols.end) / 2).min(self.width - 1) as i32;
-            let y = ((b.rows.0 + b.rows.1) / 2).min(self.height - 1) as i32;
-            (2 * x + 1 - width, height - 2 * y - 1)
-        });
-        let dc = view.direction(x0 as i64, y0 as i64);
+        // The quadrics' expansion point: the centre of the screen, `dx = dy = 0`.
+        let dc = view.forward.map(|c| c as i64);
         // ⌈log₂ max(1, |ô|²)⌉: below 28, since the scene lies within 2¹³ units and r ≥ 1
         // unit.
         let r2 = mul_ii(r as i32, r as i32);
@@ -1086,7 +1082,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
             radius: r as u32,
             b_rises: oc.iter().zip(&step2).map(|(&o, &t)| o * t).sum::<i64>() > 0,
-            origin: (x0, y0),
             e,
         };
         match self.spheres.get_mut(i) {
@@ -1269,7 +1264,13 @@ mod tests {
 
     #[test]
     fn divisor_within_two_units_of_the_quotient() {
-        for (m, z) in [(1u64, 0), (3, 5), (1 << 40, -20), (u64::MAX, 31), (0x1234_5678_9abc, 13)] {
+        for (m, z) in [
+            (1u64, 0),
+            (3, 5),
+            (1 << 40, -20),
+            (u64::MAX, 31),
+            (0x1234_5678_9abc, 13),
+        ] {
             let den = Divisor::new(m, z).expect("not zero");
             for c in values() {
                 // The exact quotient c/(m·2^z), where it fits i64.
