@@ -1,0 +1,125 @@
+//! shadeline built without the feature `full-width`: the fixed path's spans are the spheres'
+//! outlines alone, row by row (no screen rectangle around them), and they change no pixel.
+//! Each frame is rendered twice, with spans and with every sphere tested at every pixel
+//! (`with_spans(false)`), and compared pixel by pixel: a span that left out a pixel a sphere
+//! covers would show as a difference. The frames: the exponent series at several sizes, and
+//! random scenes of spheres near the frame's edges, partly off screen and close to the camera.
+
+use shadeline::{
+    exponent_series_with_capacity, Camera, Light, LinearRgb, Material, PreparedFixed, Render,
+    Rgb888, Scene, Sphere, Vec3,
+};
+
+fn frame<const S: usize, const L: usize>(frame: &PreparedFixed<S, L>) -> Vec<Rgb888> {
+    let (w, h) = (frame.width(), frame.height());
+    let mut out = vec![Rgb888::default(); (w * h) as usize];
+    for (y, row) in out.chunks_mut(w as usize).enumerate() {
+        frame
+            .render_line(y as u32, row)
+            .expect("a row of the frame");
+    }
+    out
+}
+
+/// Renders `scene` at `w × h` with and without spans and compares; `false` if the narrow
+/// kernel refuses the frame (a random scene may put spheres too close together).
+fn spans_change_nothing<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    (w, h): (u32, u32),
+    what: &str,
+) -> bool {
+    let Ok(with) = PreparedFixed::<S, L>::new(scene, w, h) else {
+        return false;
+    };
+    let without = with.clone().with_spans(false);
+    let (a, b) = (frame(&with), frame(&without));
+    for (i, (p, q)) in a.iter().zip(&b).enumerate() {
+        assert_eq!(
+            p,
+            q,
+            "{what} at {w}x{h}: pixel ({}, {}) differs with spans",
+            i as u32 % w,
+            i as u32 / w
+        );
+    }
+    // A frame of background alone would test nothing.
+    assert!(a.iter().any(|p| *p != a[0]), "{what}: no sphere on screen");
+    true
+}
+
+#[test]
+fn the_exponent_series_at_several_sizes() {
+    let scene: Scene<5, 1> = exponent_series_with_capacity().expect("the preset");
+    for size in [(320, 240), (64, 48), (97, 73), (31, 97), (200, 200)] {
+        assert!(
+            spans_change_nothing(&scene, size, "the exponent series"),
+            "refused at {size:?}"
+        );
+    }
+}
+
+/// A small xorshift generator: the same scenes on every run.
+struct Random(u64);
+
+impl Random {
+    fn unit(&mut self) -> f32 {
+        self.0 ^= self.0 << 13;
+        self.0 ^= self.0 >> 7;
+        self.0 ^= self.0 << 17;
+        (self.0 >> 40) as f32 / (1u64 << 24) as f32
+    }
+
+    fn range(&mut self, lo: f32, hi: f32) -> f32 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+#[test]
+fn random_scenes_near_the_edges_and_the_camera() {
+    let mut random = Random(0x2545_f491_4f6c_dd1d);
+    let mut rendered = 0;
+    for i in 0..60 {
+        let camera = Camera {
+            position: Vec3::new(0.0, 0.0, 8.0),
+            look_at: Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0),
+            up: Vec3::new(random.range(-0.3, 0.3), 1.0, 0.0),
+            vfov_degrees: random.range(20.0, 50.0),
+        };
+        let mut scene: Scene<6, 2> =
+            Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).expect("valid camera");
+        for _ in 0..5 {
+            // Up to the frame's edges and beyond, and up to 2 units from the camera.
+            let z = random.range(-4.0, 5.5);
+            let reach = (8.0 - z) * 0.45;
+            let sphere = Sphere {
+                center: Vec3::new(random.range(-reach, reach), random.range(-reach, reach), z),
+                radius: random.range(0.2, 1.2),
+                material: Material {
+                    shininess: random.range(2.0, 300.0),
+                    ..Material::default()
+                },
+            };
+            scene.add_sphere(sphere).expect("a valid sphere");
+        }
+        scene
+            .add_light(Light::Distant {
+                direction: Vec3::new(
+                    random.range(-1.0, 1.0),
+                    random.range(-1.0, 1.0),
+                    -random.range(0.2, 1.0),
+                ),
+                color: LinearRgb::new(1.0, 0.9, 0.8),
+                intensity: 1.5,
+            })
+            .expect("a valid light");
+        let size = [(64, 48), (80, 80), (53, 29)][i % 3];
+        if spans_change_nothing(&scene, size, &format!("random scene {i}")) {
+            rendered += 1;
+        }
+    }
+    // Most random scenes are narrow frames; the test must have compared many.
+    assert!(
+        rendered >= 30,
+        "only {rendered} of 60 random scenes rendered"
+    );
+}
