@@ -437,8 +437,8 @@ pub(crate) struct FixedSphere {
     /// GGX's constants, if the specular lobe is GGX.
     #[cfg(feature = "models")]
     pub ggx: Option<FixedGgx>,
-    /// The scaled radius, for the soft shadows of sphere lights.
-    #[cfg(all(feature = "area-lights", feature = "full-width"))]
+    /// The scaled radius: for the narrow kernel's prepare (its square is `radius_sq`) and
+    /// the soft shadows of sphere lights.
     pub radius: Len,
     /// Per lobe (`shininess`, then `more_shininess`), the constants of its energy factor
     /// under a sphere light (`area::lobe_widening`): `√(πn′/2)` in U16F16 and `n′/2` in
@@ -784,7 +784,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                         alpha: u1f31(libm::sqrtf(params.alpha2)),
                     }
                 }),
-                #[cfg(all(feature = "area-lights", feature = "full-width"))]
                 radius,
                 #[cfg(all(feature = "area-lights", feature = "full-width"))]
                 widening: {
@@ -1003,11 +1002,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(s) = self.spheres.get(i) else {
             return Err("center");
         };
-        let (eye_offset, radius_sq, ks) = (s.eye_offset, s.radius_sq, s.ks);
+        let (eye_offset, ks) = (s.eye_offset, s.ks);
         let eps = self.epsilon.to_bits() as i64;
         let (sx, sy) = (view.step_x.map(|c| c as i64), view.step_y.map(|c| c as i64));
         let oc = eye_offset.map(|c| c.to_bits() as i64);
-        let r = (radius_sq.to_bits().max(0) as u64).isqrt() as i64;
+        let r = s.radius.to_bits() as i64;
         // |oc|² < 3·2⁶⁰: the scene lies within 2¹³ units.
         let oc_len2 = oc.iter().map(|&c| mul_ii(c as i32, c as i32)).sum::<i64>();
         if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
@@ -1139,7 +1138,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     fn narrow_casters(&self, i: usize, to_light: V3<Unit>) -> Option<(u32, i32, u32)> {
         let own = self.spheres.get(i)?;
         let eps = self.epsilon.to_bits() as i64;
-        let radius = |s: &FixedSphere| (s.radius_sq.to_bits().max(0) as u64).isqrt() as i64;
+        let radius = |s: &FixedSphere| s.radius.to_bits() as i64;
         let r = radius(own);
         let l = to_light.map(|c| to_f32(c.to_bits() as i64, 30));
         let eps_f = to_f32(eps, 16);
