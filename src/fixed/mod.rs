@@ -122,7 +122,7 @@
 //!
 //! # Modules
 //!
-//! `prepare` (scene → formats, the refusals) · `spans` (screen rectangles narrowed to each row's outline) · `row` (the
+//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans, within screen rectangles where the full-width kernel is built) · `row` (the
 //! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the stages) ·
 //! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
 //! `area` (sphere lights' closed forms, features `area-lights` and `full-width`) ·

@@ -429,7 +429,8 @@ pub(crate) struct FixedSphere {
     #[cfg(feature = "full-width")]
     /// `F₀` per channel, U2F30 (`1 << 30` is 1).
     pub f0: [u32; 3],
-    /// The screen rectangle, or `None` if the sphere is off screen.
+    /// The sphere's spans: its screen rectangle (the whole frame without the full-width
+    /// kernel) and its outline's row conic; `None` if the sphere is off screen.
     pub bounds: Option<Bounds>,
     /// Oren–Nayar's `A` and `B` (U2F30), if the diffuse lobe is Oren–Nayar's.
     #[cfg(feature = "models")]
@@ -1190,7 +1191,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         Some((mask, q15 as i32, q30 as u32))
     }
 
-    /// Turns the screen-rectangle spans on (the default) or off. Off, every pixel tests every
+    /// Turns the spans on (the default) or off. Off, every pixel tests every
     /// sphere: kept for the test that spans change no pixel, and for benchmarks.
     pub fn with_spans(mut self, on: bool) -> Self {
         self.use_spans = on;
