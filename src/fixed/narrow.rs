@@ -678,7 +678,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     Some(n) => n,
                     None => *normal.insert(self.narrow_normal(sphere, ns, d, sigma, nv)),
                 };
-                blocked = self.narrow_blocked(index, ns, n, light_index, light.casters);
+                blocked = self.narrow_blocked(index, n, light_index, light.casters);
             }
             if blocked {
                 if record_hits && light_index < 32 {
@@ -752,7 +752,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let root = sqrt(e60).min(i32::MAX as u64) as u32;
         let nv = mul_uu(root, sigma) >> 31; // Q30
                                             // t = −oc·D̂ − r·(N·V), raw I16F16.
-        let t = -dot_len_unit(sphere.eye_offset, dh) - (mul_uu(ns.radius, nv as u32) >> 30) as i64;
+        let t = -dot_len_unit(sphere.eye_offset, dh)
+            - (mul_uu(sphere.radius.to_bits() as u32, nv as u32) >> 30) as i64;
         let (_, n) = self.normal(sphere, dh, t);
         let half = if sphere.blinn {
             half_vector(*to_light, dh)
@@ -806,14 +807,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// the ray moves toward its centre (`b = (O − C)·L < 0`) and passes within its radius
     /// (`|O − C|² − b² ≤ r²`), and no square root is needed. `light` is the light's index.
     #[inline(always)]
-    fn narrow_blocked(
-        &self,
-        index: usize,
-        ns: &NarrowSphere,
-        n: V3<i32>,
-        light: usize,
-        casters: u32,
-    ) -> bool {
+    fn narrow_blocked(&self, index: usize, n: V3<i32>, light: usize, casters: u32) -> bool {
         debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
         let (Some(own), Some(FixedLight::Distant { to_light, .. })) =
             (self.spheres.get(index), self.lights.get(light))
@@ -827,7 +821,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 continue;
             }
             let origin = *origin.get_or_insert_with(|| {
-                let lift = (ns.radius as i64 + self.epsilon.to_bits() as i64).min(i32::MAX as i64);
+                let lift = (own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64)
+                    .min(i32::MAX as i64);
                 each3(|i| own.center[i].to_bits() as i64 + (mul_ii(lift as i32, n[i]) >> 15))
             });
             let oc = each3(|i| to_len(origin[i] - s.center[i].to_bits() as i64));
@@ -852,10 +847,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
     fn narrow_t(&self, hit: &Hit, sigma: i32, d: V3<i32>) -> i64 {
         let sphere = self.spheres.get(hit.index);
-        let narrow = sphere.and_then(|s| s.narrow.as_ref());
-        // Only frames whose every sphere has narrow data take the narrow kernel.
-        debug_assert!(narrow.is_some(), "sphere {} has no narrow data", hit.index);
-        let radius = narrow.map_or(0, |n| n.radius);
+        let radius = sphere.map_or(0, |s| s.radius.to_bits() as u32);
         let b = sphere.map_or(0, |s| dot_i32(s.eye_offset.map(|c| c.to_bits()), d));
         // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
         let along = (mul_uu(((-b) >> 30) as u32, sigma as u32) >> 14) as i64;

@@ -278,7 +278,7 @@ impl Divisor {
 
     /// `c` over the divisor, within two units plus `2⁻⁶⁰` of the quotient (the dividend is
     /// taken to its top 63 bits, the reciprocal is within `2⁻⁶⁰`; test
-    /// `divisor_within_two_units_of_the_quotient`); `None` if it does not fit `i64`.
+    /// `divisor_within_its_error_bound`); `None` if it does not fit `i64`.
     #[inline(never)]
     fn divide(&self, c: i128) -> Option<i64> {
         let t = (128 - c.unsigned_abs().leading_zeros()).saturating_sub(63);
@@ -360,8 +360,6 @@ pub(crate) struct NarrowSphere {
     /// (`L` the raw radius's bit length, `cross_shift = L + 14`).
     pub cross_shift: u32,
     pub gain: u32,
-    /// The radius, raw I16F16.
-    pub radius: u32,
     /// Whether `b = oc·D` grows along a row (`oc·step_x > 0`).
     pub b_rises: bool,
     /// `E′`, see above.
@@ -1080,7 +1078,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             g_shift,
             cross_shift: bits + 14,
             gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
-            radius: r as u32,
             b_rises: oc.iter().zip(&step2).map(|(&o, &t)| o * t).sum::<i64>() > 0,
             e,
         };
@@ -1263,7 +1260,7 @@ mod tests {
     }
 
     #[test]
-    fn divisor_within_two_units_of_the_quotient() {
+    fn divisor_within_its_error_bound() {
         for (m, z) in [
             (1u64, 0),
             (3, 5),
