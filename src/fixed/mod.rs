@@ -92,9 +92,11 @@
 //! the column, forward-differenced (two 64-bit additions each), 16×16→32-bit products, two
 //! table lookups with linear interpolation for `1/|D|` and `N·V`, and 64-bit arithmetic only
 //! for the bright part of a narrow highlight (`precise_lobe`). On the exponent series at
-//! 320×240 (`.ci/firmware`) a frame takes 7.4 M instructions on the Cortex-M0, 5.8 M on the
-//! Cortex-M4F and 6.1 M on the RV32IMAC, with the same bits on all three; 1.16 sphere-pixels
-//! are tested per covered pixel (`spans`).
+//! 320×240 (`.ci/firmware`, firmware builds without `full-width`) a frame takes 7.0 M
+//! instructions on the Cortex-M0, 5.0 M on the Cortex-M4F and 4.9 M on the RV32IMAC, with
+//! the same bits on all three. Without `full-width` each sphere is tested only at the pixels
+//! its hit test passes (`outline`); with it, 1.16 sphere-pixels are tested per covered
+//! pixel (`spans`).
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
 //! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against
@@ -122,7 +124,9 @@
 //!
 //! # Modules
 //!
-//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans, within screen rectangles where the full-width kernel is built) · `row` (the
+//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within
+//! screen rectangles, feature `full-width`) · `outline` (exact spans from the narrow
+//! kernel's quadric, without `full-width`) · `row` (the
 //! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the stages) ·
 //! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
 //! `area` (sphere lights' closed forms, features `area-lights` and `full-width`) ·
@@ -139,10 +143,13 @@ mod exact;
 mod kernel;
 mod mul;
 mod narrow;
+#[cfg(not(feature = "full-width"))]
+mod outline;
 mod pow;
 mod prepare;
 mod roots;
 mod row;
+#[cfg(feature = "full-width")]
 mod spans;
 mod vector;
 

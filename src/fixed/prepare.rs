@@ -14,7 +14,10 @@
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
 use super::mul::{mul_ii, mul_uu, mul_wide};
+#[cfg(not(feature = "full-width"))]
+use super::outline::outline_rows;
 use super::roots::inv_sqrt;
+#[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
 use super::vector::{each3, normalize, Len, Unit, V3};
 use crate::brdf::Params;
@@ -151,7 +154,7 @@ impl Quadric {
 /// `a·b` of two `i64`, exact: four 32×32→64 products ([`mul_u128`]), not a call to the
 /// 128×128 multiplication routine. Out of line, like [`mul_u128`].
 #[inline(never)]
-fn mul_128(a: i64, b: i64) -> i128 {
+pub(crate) fn mul_128(a: i64, b: i64) -> i128 {
     let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
     if (a < 0) != (b < 0) {
         -p
@@ -364,6 +367,10 @@ pub(crate) struct NarrowSphere {
     pub b_rises: bool,
     /// `E′`, see above.
     pub e: Quadric,
+    /// The rows on which `E′` can be at least 0, `[start, end)` (see `outline`): the spans
+    /// without the full-width kernel.
+    #[cfg(not(feature = "full-width"))]
+    pub rows: (u32, u32),
 }
 
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
@@ -427,8 +434,10 @@ pub(crate) struct FixedSphere {
     #[cfg(feature = "full-width")]
     /// `F₀` per channel, U2F30 (`1 << 30` is 1).
     pub f0: [u32; 3],
-    /// The sphere's spans: its screen rectangle (the whole frame without the full-width
-    /// kernel) and its outline's row conic; `None` if the sphere is off screen.
+    /// The sphere's spans: its screen rectangle and its outline's row conic; `None` if the
+    /// sphere is off screen. (Without the full-width kernel, the spans are the narrow
+    /// quadric's, see `outline`.)
+    #[cfg(feature = "full-width")]
     pub bounds: Option<Bounds>,
     /// Oren–Nayar's `A` and `B` (U2F30), if the diffuse lobe is Oren–Nayar's.
     #[cfg(feature = "models")]
@@ -702,6 +711,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let epsilon = fixed_bits_i32(scene.ray_epsilon() * scale, 16)
             .map(Len::from_bits)
             .ok_or(out_of_range(Item::Camera, "position"))?;
+        #[cfg(feature = "full-width")]
         let view = View {
             eye: camera.position,
             right,
@@ -765,6 +775,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 schlick: params.schlick > 0.0,
                 #[cfg(feature = "full-width")]
                 diffuse_loss: params.diffuse_loss > 0.0,
+                #[cfg(feature = "full-width")]
                 bounds: view.bounds(s.center, s.radius),
                 narrow: None,
                 #[cfg(feature = "models")]
@@ -1079,6 +1090,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             cross_shift: bits + 14,
             gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
             b_rises: oc.iter().zip(&step2).map(|(&o, &t)| o * t).sum::<i64>() > 0,
+            #[cfg(not(feature = "full-width"))]
+            rows: outline_rows(&e, self.height),
             e,
         };
         match self.spheres.get_mut(i) {

@@ -16,7 +16,9 @@ use super::kernel::{ray, Shaded};
 #[cfg(feature = "full-width")]
 use super::mul::{mul_ii, mul_iu};
 use super::narrow::{Narrow, NarrowRun};
-use super::prepare::PreparedFixed;
+#[cfg(not(feature = "full-width"))]
+use super::outline::outline_on_row;
+use super::prepare::{FixedSphere, PreparedFixed};
 #[cfg(feature = "full-width")]
 use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, Encoding};
@@ -48,8 +50,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         out.clear();
         for s in &self.spheres {
             let span = if self.use_spans {
-                s.bounds
-                    .and_then(|b| b.on_row(y, self.height, self.rectangles()))
+                self.sphere_span(s, y)
             } else {
                 Some(full)
             };
@@ -58,6 +59,26 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let pushed = out.push(span);
             debug_assert!(pushed.is_ok(), "more spans than spheres");
         }
+    }
+
+    /// Sphere `s`'s span on row `y`: its rectangle's columns narrowed to its outline's.
+    #[cfg(feature = "full-width")]
+    #[inline(always)]
+    fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
+        s.bounds
+            .and_then(|b| b.on_row(y, self.height, self.rectangles()))
+    }
+
+    /// Sphere `s`'s span on row `y`: the columns where the narrow kernel's hit test passes,
+    /// within the rows the prepare found for it (see `outline`).
+    #[cfg(not(feature = "full-width"))]
+    #[inline(always)]
+    fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
+        let n = s.narrow.as_ref()?;
+        if !(n.rows.0 <= y && y < n.rows.1) {
+            return None;
+        }
+        outline_on_row(&n.e, self.height as i32 - 2 * y as i32 - 1, self.width)
     }
 
     #[cfg(feature = "full-width")]
@@ -184,6 +205,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// Whether the spans are the spheres' rectangles alone (anti-aliased frames: the
     /// outlines' row spans leave out pixels within reach of an outline).
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     fn rectangles(&self) -> bool {
         #[cfg(all(feature = "antialias", feature = "full-width"))]

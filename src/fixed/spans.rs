@@ -10,13 +10,9 @@
 //! coefficients' errors so that it stays conservative. Spheres whose coefficients do not
 //! fit (frames over 4096 pixels, spheres far off screen) keep the rectangle.
 //!
-//! Without the feature `full-width` (a firmware's build: no full-width kernel, no
-//! anti-aliasing) there is no rectangle: a sphere's spans are its outline's alone, clipped
-//! to the frame, and a sphere without a row conic spans the whole frame. A row beyond the
-//! outline's reach is refused by a bound on the outline's own test (`RowConic::t_max`)
-//! before its products. On the M0 demo that is 454 bytes less code for 0.5% more
-//! instructions per frame (the outline's test on rows the rectangle refused);
-//! `checks/no-models/tests/spans.rs` checks that these spans change no pixel.
+//! This module exists with the feature `full-width` (the full-width kernel and the
+//! anti-aliased edges need the rectangles); without it the spans are `outline`'s, exact
+//! from the narrow kernel's own quadric.
 //!
 //! # The rectangle
 //!
@@ -271,15 +267,6 @@ impl View {
         let (cx, cy, cz) = (oc.dot(self.right), oc.dot(self.up), oc.dot(self.forward));
         if !(cz > NEAR * radius) {
             return full;
-        }
-        // Without the full-width kernel (no anti-aliasing, whose spans are the rectangles),
-        // the outline's row spans alone: the rectangle only gives each row a quick refusal,
-        // and costs a firmware its flash.
-        if !cfg!(feature = "full-width") {
-            return full.map(|b| Bounds {
-                conic: self.conic(cx, cy, cz, radius),
-                ..b
-            });
         }
         let k = cz * cz - radius * radius;
         let extent = |c: f32| {

@@ -123,3 +123,60 @@ fn random_scenes_near_the_edges_and_the_camera() {
         "only {rendered} of 60 random scenes rendered"
     );
 }
+
+/// The spans are exact, not merely conservative: with one sphere in front of the camera
+/// (its outline an ellipse on the screen), each row's span holds exactly the pixels whose
+/// hit record is the sphere's, and a row the sphere does not reach has no span. Spheres of
+/// every size from a few pixels to more than the frame, anywhere on screen or partly off it.
+#[test]
+fn spans_are_the_hit_pixels_exactly() {
+    let mut random = Random(0x9e37_79b9_7f4a_7c15);
+    let mut compared = 0usize;
+    for i in 0..40 {
+        let camera = Camera {
+            position: Vec3::new(0.0, 0.0, 8.0),
+            look_at: Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0),
+            up: Vec3::new(random.range(-0.3, 0.3), 1.0, 0.0),
+            vfov_degrees: random.range(20.0, 60.0),
+        };
+        let mut scene: Scene<1, 1> =
+            Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).expect("valid camera");
+        let z = random.range(-6.0, 4.0);
+        let reach = (8.0 - z) * 0.5;
+        let sphere = Sphere {
+            center: Vec3::new(random.range(-reach, reach), random.range(-reach, reach), z),
+            radius: random.range(0.05, 2.5),
+            material: Material::default(),
+        };
+        scene.add_sphere(sphere).expect("a valid sphere");
+        scene
+            .add_light(Light::Distant {
+                direction: Vec3::new(0.3, -1.0, -0.5),
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: 1.0,
+            })
+            .expect("a valid light");
+        let (w, h) = [(64, 48), (97, 31), (40, 90)][i % 3];
+        // A wide frame at a wide field of view is the full-width kernel's.
+        let Ok(frame) = PreparedFixed::<1, 1>::new(&scene, w, h) else {
+            continue;
+        };
+        for y in 0..h {
+            let mut hits = vec![shadeline::HitRecord::default(); w as usize];
+            frame.render_line(y, &mut hits).expect("a row");
+            let hit: Vec<u32> = (0..w)
+                .filter(|&x| hits[x as usize].sphere == Some(0))
+                .collect();
+            let span = frame.row_spans(y)[0];
+            let want = hit.first().map(|&start| (start, hit.len() as u32));
+            let got = span.map(|s| (s.start, s.end - s.start));
+            assert_eq!(got, want, "scene {i} ({w}x{h}), row {y}: span {span:?}");
+            // The hit pixels are one run, as the span is.
+            if let Some(&last) = hit.last() {
+                assert_eq!(last + 1 - hit[0], hit.len() as u32, "scene {i}, row {y}");
+            }
+            compared += hit.len();
+        }
+    }
+    assert!(compared > 10_000, "only {compared} hit pixels compared");
+}

@@ -1,0 +1,112 @@
+//! Scanline spans of the fixed path without its full-width kernel (a firmware's build, no
+//! feature `full-width`): each sphere's span on a row is exactly the columns where the narrow
+//! kernel's hit test passes, found from the same integer quadric the kernel steps along the
+//! row, so there is no `f32` outline to compute at prepare and no margin to allow for.
+//!
+//! The narrow kernel tests a pixel by the sign of `E′` (see `narrow`), a quadratic in the
+//! pixel's half-pixel offsets `(dx, dy)` held with exact integer coefficients
+//! ([`Quadric`]). Where the sphere's outline on the screen is an ellipse (the sphere is in
+//! front of the camera and does not reach its side), `E′` is concave along every row and the
+//! rows that reach `E′ ≥ 0` are one interval: the prepare finds that interval once
+//! ([`outline_rows`], a few dozen exact `i128` evaluations per sphere), and each row in it
+//! its columns ([`outline_on_row`], three binary searches of the row's quadratic). A row
+//! outside the interval costs one comparison. Elsewhere (a hyperbola or parabola on the
+//! screen, which the narrow kernel's field of view allows only for a sphere beside the
+//! camera) a sphere spans the whole frame, or the whole row. The spans are the hit test's
+//! own, so they change no pixel: `checks/no-models/tests/spans.rs` renders frames with and
+//! without them.
+//!
+//! With `full-width`, the spans are `spans`' screen rectangles and `f32` row conics, which
+//! the full-width kernel and the anti-aliased edges need.
+
+use super::prepare::{mul_128, Quadric};
+use crate::runs::Span;
+
+/// The first `k` in `[lo, hi)` for which `pred(k)` holds, or `hi` if none does, for a
+/// `pred` that is false up to some point and true from there on: a binary search.
+#[inline(always)]
+fn first(mut lo: u32, mut hi: u32, pred: impl Fn(u32) -> bool) -> u32 {
+    while lo < hi {
+        let mid = lo + (hi - lo) / 2;
+        if pred(mid) {
+            hi = mid;
+        } else {
+            lo = mid + 1;
+        }
+    }
+    lo
+}
+
+/// Largest magnitude of `c₂₀` (every row's `e₂`) for which [`outline_rows`] bounds the
+/// rows: then `4e₂` fits `i64`, and with `e₀`, `e₁` below `2⁶²` (values of the quadric in
+/// the frame, or half a difference of two, see [`Quadric::row`]) `e₁²` and `4e₂e₀` are
+/// below `2¹²⁵`, so their difference fits `i128`.
+const ROW_TEST_LIMIT: u64 = 1 << 61;
+
+/// `e₁² − 4e₂e₀` of `E′` on row `y` of a frame `height` rows high: with `e₂ < 0`, at
+/// least 0 exactly where the row's chord of `E′` reaches `E′ ≥ 0` for some real `dx`, in
+/// the frame or not. Exact in `i128` where [`ROW_TEST_LIMIT`] bounds `e₂`.
+#[inline(never)]
+fn row_reach(e: &Quadric, y: u32, height: u32) -> i128 {
+    let [e0, e1, e2] = e.row(height as i32 - 2 * y as i32 - 1);
+    mul_128(e1, e1) - mul_128(4 * e2, e0)
+}
+
+/// Whether [`row_reach`] is larger on row `y + 1` than on row `y`.
+#[inline(never)]
+fn reach_rises(e: &Quadric, y: u32, height: u32) -> bool {
+    row_reach(e, y + 1, height) > row_reach(e, y, height)
+}
+
+/// The rows `[start, end)` of a frame `height` rows high on which the sphere whose narrow
+/// quadric is `e` can be hit, found once per frame; the whole frame where `E′` is not an
+/// ellipse on the screen (the sphere reaches the side of the camera) or `c₂₀` is too large
+/// for the exact test ([`ROW_TEST_LIMIT`]).
+///
+/// On the row at `dy`, `E′ = e₀ + e₁·dx + e₂·dx²` with `e₂ = c₂₀`: for `c₂₀ < 0` its
+/// largest value over real `dx` is `e₀ − e₁²/4e₂`, which is at least 0 iff
+/// `R(dy) = e₁² − 4e₂e₀ ≥ 0` ([`row_reach`]). `R` is a quadratic in `dy` with leading
+/// coefficient `c₁₁² − 4c₂₀c₀₂`; where that is negative, `R` is concave along the rows, so
+/// its rows at or above 0 are one interval: a binary search on the sign of `R`'s difference
+/// finds the row where `R` is largest, two more find the interval's ends. Every value is
+/// exact, so no row with a hit is left out.
+pub(crate) fn outline_rows(e: &Quadric, height: u32) -> (u32, u32) {
+    let [_, _, _, c20, c11, c02] = e.c;
+    // c₁₁² and 4c₂₀c₀₂ are below 2¹²⁶: compared, not subtracted.
+    if c20 >= 0
+        || c20.unsigned_abs() >= ROW_TEST_LIMIT
+        || mul_128(c11, c11) >= mul_128(4 * c20, c02)
+    {
+        return (0, height);
+    }
+    let top = first(0, height.saturating_sub(1), |y| !reach_rises(e, y, height));
+    let reaches = |y| row_reach(e, y, height) >= 0;
+    if !reaches(top) {
+        return (0, 0);
+    }
+    (first(0, top, reaches), first(top, height, |y| !reaches(y)))
+}
+
+/// The columns of the row at offset `dy` (frame `width` columns wide) where `E′ ≥ 0`: the
+/// narrow kernel's hit test, so the span is exact. `E′` is concave along the row where
+/// `e₂ < 0` (otherwise the span is the whole row): a binary search on the sign of its
+/// forward difference finds its largest column, two more the span's ends, each step one
+/// evaluation of the quadric (exact, as the kernel's forward differences are).
+pub(crate) fn outline_on_row(e: &Quadric, dy: i32, width: u32) -> Option<Span> {
+    let row = e.row(dy);
+    if row[2] >= 0 {
+        return Some(Span {
+            start: 0,
+            end: width,
+        });
+    }
+    let at = |column: u32| Quadric::step_at(row, 2 * column as i32 + 1 - width as i32);
+    let top = first(0, width.saturating_sub(1), |c| at(c).d <= 0);
+    if at(top).v < 0 {
+        return None;
+    }
+    Some(Span {
+        start: first(0, top, |c| at(c).v >= 0),
+        end: first(top, width, |c| at(c).v < 0),
+    })
+}
