@@ -9,7 +9,8 @@
 //! front of the camera and does not reach its side), `E′` is concave along every row and the
 //! rows that reach `E′ ≥ 0` are one interval: the prepare finds that interval once
 //! ([`outline_rows`], a few dozen exact `i128` evaluations per sphere), and each row in it
-//! its columns ([`outline_on_row`], three binary searches of the row's quadratic). A row
+//! its columns ([`outline_on_row`]: a binary search for the row's largest value, then the
+//! quadric's forward differences out to the span's ends). A row
 //! outside the interval costs one comparison. Elsewhere (a hyperbola or parabola on the
 //! screen, which the narrow kernel's field of view allows only for a sphere beside the
 //! camera) a sphere spans the whole frame, or the whole row. The spans are the hit test's
@@ -19,7 +20,7 @@
 //! With `full-width`, the spans are `spans`' screen rectangles and `f32` row conics, which
 //! the full-width kernel and the anti-aliased edges need.
 
-use super::prepare::{mul_128, Quadric};
+use super::prepare::{mul_128, Quadric, Step};
 use crate::runs::Span;
 
 /// The first `k` in `[lo, hi)` for which `pred(k)` holds, or `hi` if none does, for a
@@ -90,8 +91,11 @@ pub(crate) fn outline_rows(e: &Quadric, height: u32) -> (u32, u32) {
 /// The columns of the row at offset `dy` (frame `width` columns wide) where `E′ ≥ 0`: the
 /// narrow kernel's hit test, so the span is exact. `E′` is concave along the row where
 /// `e₂ < 0` (otherwise the span is the whole row): a binary search on the sign of its
-/// forward difference finds its largest column, two more the span's ends, each step one
-/// evaluation of the quadric (exact, as the kernel's forward differences are).
+/// forward difference finds its largest column, and from there the span's ends are walked
+/// to, one column at a time by the quadric's forward differences (two additions a column,
+/// exact, as the kernel's own steps are). On the exponent series' rows that is cheaper
+/// than two more binary searches, each step of which evaluates the quadric with two 32×32→64
+/// products (calls on ARMv6-M); a sphere as wide as the frame walks at most its width.
 pub(crate) fn outline_on_row(e: &Quadric, dy: i32, width: u32) -> Option<Span> {
     let row = e.row(dy);
     if row[2] >= 0 {
@@ -102,11 +106,29 @@ pub(crate) fn outline_on_row(e: &Quadric, dy: i32, width: u32) -> Option<Span> {
     }
     let at = |column: u32| Quadric::step_at(row, 2 * column as i32 + 1 - width as i32);
     let top = first(0, width.saturating_sub(1), |c| at(c).d <= 0);
-    if at(top).v < 0 {
+    // `d` is E′(c + 1) − E′(c) at column c, and moves by `dd` a column.
+    let Step { v, d, dd } = at(top);
+    if v < 0 {
         return None;
     }
-    Some(Span {
-        start: first(0, top, |c| at(c).v >= 0),
-        end: first(top, width, |c| at(c).v < 0),
-    })
+    let (mut start, mut value, mut diff) = (top, v, d);
+    while start > 0 {
+        let before = diff.wrapping_sub(dd);
+        value = value.wrapping_sub(before);
+        if value < 0 {
+            break;
+        }
+        diff = before;
+        start -= 1;
+    }
+    let (mut end, mut value, mut diff) = (top + 1, v, d);
+    while end < width {
+        value = value.wrapping_add(diff);
+        if value < 0 {
+            break;
+        }
+        diff = diff.wrapping_add(dd);
+        end += 1;
+    }
+    Some(Span { start, end })
 }
