@@ -253,8 +253,12 @@ fn crc_gray8(pixels: &[Gray8]) -> u32 {
 /// `[linear dithered RGB565, sRGB dithered RGB565, sRGB dithered Gray8]`. Printed by
 /// `cargo test --test encodings golden -- --nocapture` on x86_64 and copied here.
 const GOLDEN_SCALAR_DITHERED: [u32; 3] = [0xb13b_70b5, 0x39e7_519d, 0x2142_2168];
-/// The same frames on the fixed path (integers only: the same bits on every target).
-const GOLDEN_FIXED_DITHERED: [u32; 3] = [0x5302_95fb, 0x337f_1b3f, 0x87b1_9132];
+/// The same frames on the fixed path (integers only: the same bits on every target). The
+/// sRGB RGB565 value last changed when the prepare's distant-light direction became the
+/// unit vector to within a step of 2⁻³⁰ (`unit_q30`, one Newton step from the `f32` unit
+/// vector, instead of the general normalization's 1.9 steps): a pixel that lies on a
+/// dithering threshold can round the other way, and in this frame some do.
+const GOLDEN_FIXED_DITHERED: [u32; 3] = [0x5302_95fb, 0x0bc4_1ae3, 0x87b1_9132];
 
 fn dithered_crcs<R: Render + Clone>(r: &R) -> [u32; 3] {
     let lin = r.clone().with_encoding(Encoding::LINEAR.dithered());

@@ -19,7 +19,7 @@ use super::outline::outline_rows;
 use super::roots::inv_sqrt;
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
-use super::vector::{each3, normalize, Len, Unit, V3};
+use super::vector::{each3, Len, Unit, V3};
 use crate::brdf::Params;
 #[cfg(feature = "full-width")]
 use crate::brdf::LOBES;
@@ -561,6 +561,31 @@ fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
     }
 }
 
+/// The I2F30 unit vector of `d`, a unit vector in `f32` (within `2⁻²³` of unit length):
+/// its components rounded to 30 bits (saturating, like `saturating_from_num`, but without
+/// its panic on NaN), then one Newton step toward unit length, `v·(1 − ε/2)` for
+/// `|v|² = 1 + ε`, which leaves it within `2⁻⁴⁰` of unit length before the components'
+/// rounding. Exact integer arithmetic after the conversion, so the same bits on every
+/// target; a few products instead of the general normalization, for a vector already
+/// within a few ulps of unit length.
+#[inline(never)]
+fn unit_q30(d: Vec3) -> V3<Unit> {
+    let mut v = [0i32; 3];
+    let mut len2 = 0i64;
+    for (v, c) in v.iter_mut().zip([d.x, d.y, d.z]) {
+        let saturated = if c < 0.0 { Unit::MIN } else { Unit::MAX };
+        *v = fixed_bits_i32(c, 30)
+            .map_or(saturated, Unit::from_bits)
+            .to_bits();
+        len2 += mul_ii(*v, *v);
+    }
+    // ε = |v|² − 1 in Q60 (|ε| < 2⁻²¹: the f32 vector's rounding and the 30-bit one), then
+    // ε/2 in Q51, which holds |ε| < 2⁻²⁰ in an i32; c·ε/2 is then below 2⁶⁰.
+    let half_eps = ((len2 - (1 << 60)) >> 10).clamp(-(1 << 30), 1 << 30) as i32;
+    // |c·ε/2| < 2¹⁰ and |c| ≤ 2³⁰: the difference fits I2F30.
+    v.map(|c| Unit::from_bits(c - (mul_ii(c, half_eps) >> 51) as i32))
+}
+
 /// Per-channel levels checked against [`MAX_LEVEL`]. Out of line: the prepare converts four
 /// colours.
 #[inline(never)]
@@ -821,19 +846,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     to_levels([color.r, color.g, color.b], item, "color")?;
                     let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
                     // Validated: a scene's light direction is finite and not zero.
-                    let d = (-direction).normalized();
-                    debug_assert!(d.is_some(), "light direction {direction:?}");
-                    let d = d.unwrap_or_default();
-                    // `saturating_from_num` panics on NaN; this is the same saturation for
-                    // every other input, with no panic path for the firmware's link proof.
-                    let d = [d.x, d.y, d.z].map(|c| {
-                        let saturated = if c < 0.0 { Unit::MIN } else { Unit::MAX };
-                        fixed_bits_i32(c, 30)
-                            .map_or(saturated, Unit::from_bits)
-                            .to_bits() as i64
-                    });
+                    let d = (-direction)
+                        .normalized()
+                        .ok_or(out_of_range(item, "direction"))?;
                     FixedLight::Distant {
-                        to_light: normalize(d).ok_or(out_of_range(item, "direction"))?,
+                        to_light: unit_q30(d),
                         arriving: to_levels(
                             [arriving.x, arriving.y, arriving.z],
                             item,
@@ -1241,6 +1258,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
 #[cfg(test)]
 mod tests {
+    extern crate std;
     use super::*;
 
     /// Values at and around every power of two of both signs, and a xorshift stream.
@@ -1261,6 +1279,51 @@ mod tests {
             (((h as u128) << 64 | l as u128) as i128) >> (h % 120)
         });
         edges.chain([0, i128::MAX, i128::MIN]).chain(random)
+    }
+
+    /// The light's unit vector, for directions all around the sphere (a xorshift stream)
+    /// and along the axes and diagonals: each component within one step of 2⁻³⁰ of the
+    /// exact (`f64`) unit vector along the same 30-bit components (the general
+    /// normalization, `vector::normalize`, is within 1.94 steps on the same inputs), so of
+    /// unit length within `2⁻²⁸`. Both keep the `f32` unit vector's own direction, within
+    /// about `2⁻²⁴` of the scene's.
+    #[test]
+    fn unit_q30_is_the_unit_vector_to_a_step() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            (x >> 40) as f32 / (1u64 << 23) as f32 - 1.0
+        };
+        let mut dirs: std::vec::Vec<Vec3> = (0..20_000)
+            .map(|_| Vec3::new(next(), next(), next()))
+            .collect();
+        for (a, b, c) in [
+            (1.0, 0.0, 0.0),
+            (0.0, -1.0, 0.0),
+            (1.0, 1.0, 1.0),
+            (-1.0, 1e-6, 0.5),
+        ] {
+            dirs.push(Vec3::new(a, b, c));
+        }
+        let (mut worst_len, mut worst_step) = (0i64, 0.0f64);
+        for d in dirs {
+            let Some(unit) = d.normalized() else {
+                continue;
+            };
+            let got = unit_q30(unit);
+            let len2: i64 = got.iter().map(|c| mul_ii(c.to_bits(), c.to_bits())).sum();
+            worst_len = worst_len.max((len2 - (1 << 60)).abs());
+            let q30 = [unit.x, unit.y, unit.z].map(|c| fixed_bits_i32(c, 30).unwrap() as f64);
+            let len = (q30[0] * q30[0] + q30[1] * q30[1] + q30[2] * q30[2]).sqrt();
+            for (g, c) in got.iter().zip(q30) {
+                let want = c / len * (1u64 << 30) as f64;
+                worst_step = worst_step.max((g.to_bits() as f64 - want).abs());
+            }
+        }
+        assert!(worst_step <= 1.0, "a component {worst_step} steps off");
+        assert!(worst_len <= 1 << 32, "|v|² off by {worst_len} in Q60");
     }
 
     #[test]
