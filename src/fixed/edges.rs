@@ -47,8 +47,9 @@
 //! spans: those are exact to a few columns, and a pixel outside every span is background
 //! whatever its distance to an outline.
 
-use super::kernel::{ray, Shaded};
+use super::kernel::ray;
 use super::mul::{leading_zeros, mul_ii, mul_iu, mul_uu};
+use super::narrow::Shaded;
 use super::prepare::{FixedSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{dot_len_unit, dot_unit, each3, len_times_unit, length_sq, Unit, V3};

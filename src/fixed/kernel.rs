@@ -36,6 +36,7 @@ use super::exact::Exact;
 #[cfg(all(feature = "models", feature = "full-width"))]
 use super::mul::leading_zeros;
 use super::mul::{mul_ii, mul_iu, mul_uu};
+use super::narrow::Shaded;
 #[cfg(feature = "full-width")]
 use super::pow::lobe;
 #[cfg(all(feature = "models", feature = "full-width"))]
@@ -53,13 +54,6 @@ use crate::pixel::HitRecord;
 use crate::runs::Span;
 #[cfg(feature = "full-width")]
 use fixed::types::{I16F48, U16F16};
-
-/// What the kernel found for one pixel: linear colour in U16F16 (saturated) and the hit
-/// record (shadowed bits only when asked for).
-pub(crate) struct Shaded {
-    pub color: [u32; 3],
-    pub hit: HitRecord,
-}
 
 /// A light as seen from one surface point.
 #[cfg(feature = "full-width")]
@@ -185,6 +179,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// The hit point `P = eye + t·d` and the unit normal `N = (P − C)·(1/r)`.
+    #[cfg(feature = "full-width")]
     #[inline(always)]
     pub(super) fn normal(&self, s: &FixedSphere, d: V3<Unit>, t: i64) -> (V3<Len>, V3<Unit>) {
         let step = d.map(|c| len_times_unit(t, c));
@@ -622,6 +617,7 @@ fn arriving(power: V3<Exact>, (y, shift): (u32, u32)) -> [u32; 3] {
 }
 
 /// The half vector `H = normalize(L + V)`, `V = −d`; `None` where `L = −V`.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(super) fn half_vector(l: V3<Unit>, d: V3<Unit>) -> Option<V3<Unit>> {
     normalize(each3(|i| l[i].to_bits() as i64 - d[i].to_bits() as i64))
@@ -631,6 +627,7 @@ pub(super) fn half_vector(l: V3<Unit>, d: V3<Unit>) -> Option<V3<Unit>> {
 /// or `u = N − H` (Blinn-Phong; `None` without a half vector): for unit vectors
 /// `1 − cos = ½|u|²`, and `|u|²` of 30-bit fractions in F60 is `½|u|²` in F61, exact from
 /// the components, with full relative precision at the highlight.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(super) fn lobe_h(
     blinn: bool,

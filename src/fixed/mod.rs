@@ -127,7 +127,8 @@
 //! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within
 //! screen rectangles, feature `full-width`) · `outline` (exact spans from the narrow
 //! kernel's quadric, without `full-width`) · `row` (the
-//! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the stages) ·
+//! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the full-width kernel's
+//! stages, feature `full-width`) ·
 //! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
 //! `area` (sphere lights' closed forms, features `area-lights` and `full-width`) ·
 //! `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
@@ -140,6 +141,7 @@ mod convert;
 #[cfg(all(feature = "antialias", feature = "full-width"))]
 mod edges;
 mod exact;
+#[cfg(feature = "full-width")]
 mod kernel;
 mod mul;
 mod narrow;

@@ -89,7 +89,6 @@
 //! normal for caster tests and the per-channel scaling by the light's colour.
 
 use super::exact::{shift_saturating, Exact};
-use super::kernel::Shaded;
 use super::mul::{mul_ii, mul_iu, mul_uu};
 use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
 use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, Step};
@@ -100,6 +99,13 @@ use crate::runs::Span;
 
 /// One, Q15.
 const ONE: i32 = 1 << 15;
+
+/// What a kernel (the narrow one, or the full-width one) found for one pixel: linear colour
+/// in U16F16 (saturated) and the hit record (shadowed bits only when asked for).
+pub(crate) struct Shaded {
+    pub color: [u32; 3],
+    pub hit: HitRecord,
+}
 
 /// What the narrow kernel made of a pixel.
 pub(crate) enum Narrow {

@@ -12,9 +12,11 @@
 #[cfg(all(feature = "antialias", feature = "full-width"))]
 use super::edges::EdgeRow;
 #[cfg(feature = "full-width")]
-use super::kernel::{ray, Shaded};
+use super::kernel::ray;
 #[cfg(feature = "full-width")]
 use super::mul::{mul_ii, mul_iu};
+#[cfg(feature = "full-width")]
+use super::narrow::Shaded;
 use super::narrow::{Narrow, NarrowRun};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_on_row;

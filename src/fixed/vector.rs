@@ -7,7 +7,9 @@
 //! wide products stay in `i64` and saturate, so no input can wrap, even outside the ranges
 //! the prepare step guarantees.
 
-use super::mul::{leading_zeros, mul_ii, mul_iu, mul_uu};
+use super::mul::mul_ii;
+#[cfg(feature = "full-width")]
+use super::mul::{leading_zeros, mul_iu, mul_uu};
 use fixed::types::{I16F16, I2F30};
 
 /// A length or coordinate in scaled scene units.
@@ -34,6 +36,7 @@ pub(crate) fn dot_len_unit(a: V3<Len>, b: V3<Unit>) -> i64 {
 }
 
 /// `a·b` for two unit vectors, as raw I2F30 bits in `i64`.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(crate) fn dot_unit(a: V3<Unit>, b: V3<Unit>) -> i64 {
     let [x, y, z] = each3(|i| mul_ii(a[i].to_bits(), b[i].to_bits()));
@@ -54,6 +57,7 @@ pub(crate) fn length_sq(a: V3<i64>) -> i64 {
 ///
 /// The length is clamped into I16F16 first; every length the kernel passes (`oc·d`, `t`,
 /// ε) is already within it, because the prepared scene lies within `±2¹³` units.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(crate) fn len_times_unit(len: i64, u: Unit) -> i64 {
     mul_ii(to_len(len).to_bits(), u.to_bits()) >> 30
@@ -70,6 +74,7 @@ pub(crate) fn to_len(v: i64) -> Len {
 /// The components are first shifted (exactly, by a power of two: only the direction
 /// matters) so the largest has 30 significant bits; then `1/|v|` comes from
 /// [`inv_sqrt`](super::roots::inv_sqrt), so the result's length is 1 within about `2⁻²⁹`.
+#[cfg(feature = "full-width")]
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
 pub(crate) fn normalize(v: V3<i64>) -> Option<V3<Unit>> {
