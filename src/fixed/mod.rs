@@ -132,7 +132,8 @@
 //! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
 //! `area` (sphere lights' closed forms, features `area-lights` and `full-width`) ·
 //! `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
-//! `vector` (dot products and normalization) · `mul` (exact 32×32→64 products, leading
+//! `quadric` (the narrow kernel's exact quadrics and their steps) · `vector` (dot products
+//! and normalization) · `mul` (exact 32×32→64 products, leading
 //! zeros) · `exact` (`f32` as mantissa and exponent).
 
 #[cfg(all(feature = "area-lights", feature = "full-width"))]
@@ -149,6 +150,7 @@ mod narrow;
 mod outline;
 mod pow;
 mod prepare;
+mod quadric;
 mod roots;
 mod row;
 #[cfg(feature = "full-width")]

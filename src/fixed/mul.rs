@@ -3,7 +3,8 @@
 //!
 //! Every product the kernel forms has two operands that fit 32 bits (their formats bound
 //! them, see [`super`]'s table), so it never needs a 64×64 product, let alone an overflow-
-//! checked one. On targets with a widening multiply instruction these are the plain
+//! checked one. (The prepare's exact quadrics, and the row test of the spans without the
+//! full-width kernel, need 64×64→128: [`mul_128`] and [`mul_u128`], from four of these.) On targets with a widening multiply instruction these are the plain
 //! `i64`/`u64` products. On ARMv6-M and ARMv8-M Baseline (`cfg(shadeline_short_mul)`, set by
 //! the build script), whose only multiplier is 32×32→32, a 64-bit product is otherwise a call
 //! to `__aeabi_lmul` (a full 64×64 product, about 40 instructions with the call); here it is
@@ -187,6 +188,29 @@ fn split_iu(a: i32, b: u32) -> i64 {
     let p = split_uu(a as u32, b);
     let high = ((p >> 32) as u32).wrapping_sub(b & (a >> 31) as u32);
     (((high as u64) << 32) | (p & 0xffff_ffff)) as i64
+}
+
+/// `a·b` of two `i64`, exact: four 32×32→64 products ([`mul_u128`]), not a call to the
+/// 128×128 multiplication routine. Out of line, like [`mul_u128`].
+#[inline(never)]
+pub(crate) fn mul_128(a: i64, b: i64) -> i128 {
+    let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
+    if (a < 0) != (b < 0) {
+        -p
+    } else {
+        p
+    }
+}
+
+/// `a·b` of two `u64`, exact, from four 32×32→64 products. Out of line, like [`mul_128`]:
+/// the prepare's quadrics and the outline's row test run it a few hundred times a frame,
+/// and inlined it would repeat its products in the firmware's flash.
+#[inline(never)]
+pub(crate) fn mul_u128(a: u64, b: u64) -> u128 {
+    let (xh, xl, yh, yl) = ((a >> 32) as u32, a as u32, (b >> 32) as u32, b as u32);
+    ((mul_uu(xh, yh) as u128) << 64)
+        + (((mul_uu(xh, yl) as u128) + (mul_uu(xl, yh) as u128)) << 32)
+        + mul_uu(xl, yl) as u128
 }
 
 #[cfg(test)]

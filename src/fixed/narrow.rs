@@ -3,7 +3,7 @@
 //!
 //! # Why it exists
 //!
-//! The full-width kernel ([`super::kernel`]) holds unit vectors in I2F30 and lengths in
+//! The full-width kernel (`kernel`, feature `full-width`) holds unit vectors in I2F30 and lengths in
 //! I16F16, so nearly every product is 32×32→64 bits: one instruction on a Cortex-M4 or an
 //! RV32IM core, but about twenty on ARMv6-M (Cortex-M0/M0+, RP2040), whose multiplier is
 //! 32×32→32, and a lit pixel makes about 85 of them, on vectors that do not fit the M0's
@@ -91,7 +91,8 @@
 use super::exact::{shift_saturating, Exact};
 use super::mul::{mul_ii, mul_iu, mul_uu};
 use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
-use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, Step};
+use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed};
+use super::quadric::Step;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{dot_len_unit, each3, length_sq, to_len, V3};
 use crate::pixel::HitRecord;
@@ -828,7 +829,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         each3(|i| (cross[i] - nv * dh[i]) >> 15)
     }
 
-    /// Whether one of the `casters` (a mask as [`PreparedFixed::casters`] gives it) blocks
+    /// Whether one of the `casters` (a mask as `NarrowLight::casters` holds it) blocks
     /// the ray toward the distant light `to_light` from the point of sphere `index` with
     /// normal `n`, lifted by ε: the shadow stage's caster test, from the narrow normal.
     ///

@@ -20,7 +20,8 @@
 //! With `full-width`, the spans are `spans`' screen rectangles and `f32` row conics, which
 //! the full-width kernel and the anti-aliased edges need.
 
-use super::prepare::{mul_128, Quadric, Step};
+use super::mul::mul_128;
+use super::quadric::{Quadric, Step};
 use crate::runs::Span;
 
 /// The first `k` in `[lo, hi)` for which `pred(k)` holds, or `hi` if none does, for a

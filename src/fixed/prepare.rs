@@ -9,13 +9,16 @@
 //! What it does, in order: check the size and the camera's plane scale; pick the scene's
 //! power-of-two scale; convert and check every sphere, material and light (each refusal is
 //! [`RenderError::OutOfFixedRange`] naming the item and field); compute each sphere's screen
-//! rectangle ([`super::spans`]).
+//! rectangle (`spans`, with the full-width kernel); then, for a frame the narrow kernel
+//! takes, its constants: the exact quadrics (`quadric`), the caster filters and, without the
+//! full-width kernel, each sphere's rows (`outline`).
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
-use super::mul::{mul_ii, mul_uu, mul_wide};
+use super::mul::{mul_128, mul_ii, mul_u128};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_rows;
+use super::quadric::Quadric;
 use super::roots::inv_sqrt;
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
@@ -88,79 +91,6 @@ impl NarrowView {
 #[cfg_attr(shadeline_short_mul, inline(never))]
 fn to_q29(v: V3<I16F48>) -> [i64; 3] {
     v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19)
-}
-
-/// A quadratic in a pixel's half-pixel offsets `dx = 2x + 1 − w`, `dy = h − 2y − 1` from the
-/// centre of the screen: `q = c₀₀ + c₁₀·dx + c₀₁·dy + c₂₀·dx² + c₁₁·dx·dy + c₀₂·dy²`, integer
-/// coefficients. Evaluated exactly: along a row it is a quadratic in the column, which the
-/// narrow kernel forward-differences with two additions per pixel.
-///
-/// The centre of the screen is the expansion point for every sphere. The coefficients'
-/// rounding (each within a few units of the quadric's held scale, see [`NarrowSphere`])
-/// then weighs with the square of a pixel's distance from it, at most the frame's size,
-/// which no other point improves for a sphere that fills the frame; on the exponent series
-/// the frame is the same bits as with each sphere's own middle as the point.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub(crate) struct Quadric {
-    /// `[c₀₀, c₁₀, c₀₁, c₂₀, c₁₁, c₀₂]`.
-    pub c: [i64; 6],
-}
-
-/// A quadric's state along a row at one column: its value, its step to the next column,
-/// and the step's own step, so that `v += d; d += dd` moves it one pixel right.
-#[derive(Clone, Copy, Debug, Default)]
-pub(crate) struct Step {
-    pub v: i64,
-    pub d: i64,
-    pub dd: i64,
-}
-
-impl Quadric {
-    /// The quadric along the row at offset `y` (`dy`): `(e₀, e₁, e₂)` with
-    /// `q = e₀ + e₁·x + e₂·x²`. Wrapping arithmetic: every partial sum is a value (or half a
-    /// difference) of the quadric inside the frame, which its scale keeps within `2⁶²`.
-    #[inline(always)]
-    pub(crate) fn row(&self, y: i32) -> [i64; 3] {
-        let [c00, c10, c01, c20, c11, c02] = self.c;
-        let e0 = c00.wrapping_add(mul_wide(c01.wrapping_add(mul_wide(c02, y)), y));
-        let e1 = c10.wrapping_add(mul_wide(c11, y));
-        [e0, e1, c20]
-    }
-
-    /// The state at column offset `x` on the row `y` ([`row`](Self::row), then
-    /// [`step_at`](Self::step_at)). Out of line on ARMv6-M, for its flash (inlined, the M0
-    /// demo's code grows by 180 bytes): once per run, sphere and quadric.
-    #[cfg_attr(not(shadeline_short_mul), inline(always))]
-    #[cfg_attr(shadeline_short_mul, inline(never))]
-    pub(crate) fn step_at_cell(&self, y: i32, x: i32) -> Step {
-        Self::step_at(self.row(y), x)
-    }
-
-    /// The state at column offset `x` of a row's `(e₀, e₁, e₂)`, stepping by two half pixels
-    /// (one pixel) per column.
-    #[inline(always)]
-    pub(crate) fn step_at([e0, e1, e2]: [i64; 3], x: i32) -> Step {
-        Step {
-            v: e0.wrapping_add(mul_wide(e1.wrapping_add(mul_wide(e2, x)), x)),
-            // q(x + 2) − q(x) = 2·e₁ + e₂·(4x + 4).
-            d: e1
-                .wrapping_mul(2)
-                .wrapping_add(mul_wide(e2, x.wrapping_mul(4).wrapping_add(4))),
-            dd: e2.wrapping_mul(8),
-        }
-    }
-}
-
-/// `a·b` of two `i64`, exact: four 32×32→64 products ([`mul_u128`]), not a call to the
-/// 128×128 multiplication routine. Out of line, like [`mul_u128`].
-#[inline(never)]
-pub(crate) fn mul_128(a: i64, b: i64) -> i128 {
-    let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
-    if (a < 0) != (b < 0) {
-        -p
-    } else {
-        p
-    }
 }
 
 /// `a·b` of two integer vectors whose products fit `i64` each, exact.
@@ -310,17 +240,6 @@ fn shift_to_i64(x: i128, k: u32) -> Option<i64> {
         }
         _ => Some(high >> (k - 64).min(63)),
     }
-}
-
-/// `a·b` of two `u64`, exact, from four 32×32→64 products. This and the other helpers of
-/// the quadrics' coefficients are out of line: they run a few dozen times per frame, and
-/// inlined they would repeat their products in the firmware's flash.
-#[inline(never)]
-fn mul_u128(a: u64, b: u64) -> u128 {
-    let (xh, xl, yh, yl) = ((a >> 32) as u32, a as u32, (b >> 32) as u32, b as u32);
-    ((mul_uu(xh, yh) as u128) << 64)
-        + (((mul_uu(xh, yl) as u128) + (mul_uu(xl, yh) as u128)) << 32)
-        + mul_uu(xl, yl) as u128
 }
 
 /// `a·b` of an `i64` and a `u64`, exact.

@@ -1,8 +1,8 @@
 //! The row driver of the fixed path: [`Render`] for [`PreparedFixed`].
 //!
-//! Like the float driver: spans (here each sphere's outline on the row, within its prepared
-//! screen rectangle where the full-width kernel is built, see [`super::spans`]), covered runs
-//! merged and walked with the float path's own
+//! Like the float driver: spans (each sphere's outline on the row: within its prepared
+//! screen rectangle where the full-width kernel is built, see `spans`; otherwise exactly its
+//! hit pixels, see `outline`), covered runs merged and walked with the float path's own
 //! `merge_runs` and `walk_runs` (background outside the runs, the kernel inside).
 //! Within a run the unnormalized primary direction advances by one integer addition per
 //! pixel (`2·step_x`), which is exactly the value `(2x + 1 − w)·step_x` would give: no
@@ -33,7 +33,8 @@ use fixed::types::I16F48;
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Each sphere's span on row `y`, in scene order (`None`: not on this row): the columns
     /// its outline can reach on the row (within its screen rectangle where the full-width
-    /// kernel is built). With spans off ([`PreparedFixed::with_spans`]) every sphere
+    /// kernel is built; without it, exactly the columns where the narrow kernel's hit test
+    /// passes). With spans off ([`PreparedFixed::with_spans`]) every sphere
     /// spans the whole row.
     pub fn row_spans(&self, y: u32) -> heapless::Vec<Option<Span>, S> {
         let mut out = heapless::Vec::new();
