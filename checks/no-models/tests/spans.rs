@@ -72,6 +72,18 @@ impl Random {
     fn range(&mut self, lo: f32, hi: f32) -> f32 {
         lo + (hi - lo) * self.unit()
     }
+
+    /// An empty scene seen from 8 units up the z axis, looking near the origin, with a
+    /// field of view of 20° to `max_vfov`.
+    fn scene<const S: usize, const L: usize>(&mut self, max_vfov: f32) -> Scene<S, L> {
+        let camera = Camera {
+            position: Vec3::new(0.0, 0.0, 8.0),
+            look_at: Vec3::new(self.range(-0.5, 0.5), self.range(-0.5, 0.5), 0.0),
+            up: Vec3::new(self.range(-0.3, 0.3), 1.0, 0.0),
+            vfov_degrees: self.range(20.0, max_vfov),
+        };
+        Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).expect("valid camera")
+    }
 }
 
 #[test]
@@ -79,14 +91,7 @@ fn random_scenes_near_the_edges_and_the_camera() {
     let mut random = Random(0x2545_f491_4f6c_dd1d);
     let mut rendered = 0;
     for i in 0..60 {
-        let camera = Camera {
-            position: Vec3::new(0.0, 0.0, 8.0),
-            look_at: Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0),
-            up: Vec3::new(random.range(-0.3, 0.3), 1.0, 0.0),
-            vfov_degrees: random.range(20.0, 50.0),
-        };
-        let mut scene: Scene<6, 2> =
-            Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).expect("valid camera");
+        let mut scene: Scene<6, 2> = random.scene(50.0);
         for _ in 0..5 {
             // Up to the frame's edges and beyond, and up to 2 units from the camera.
             let z = random.range(-4.0, 5.5);
@@ -133,14 +138,7 @@ fn spans_are_the_hit_pixels_exactly() {
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
     let mut compared = 0usize;
     for i in 0..40 {
-        let camera = Camera {
-            position: Vec3::new(0.0, 0.0, 8.0),
-            look_at: Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0),
-            up: Vec3::new(random.range(-0.3, 0.3), 1.0, 0.0),
-            vfov_degrees: random.range(20.0, 60.0),
-        };
-        let mut scene: Scene<1, 1> =
-            Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).expect("valid camera");
+        let mut scene: Scene<1, 1> = random.scene(60.0);
         let z = random.range(-6.0, 4.0);
         let reach = (8.0 - z) * 0.5;
         let sphere = Sphere {
