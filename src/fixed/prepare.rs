@@ -19,6 +19,7 @@ use super::mul::{mul_128, mul_ii, mul_u128};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_rows;
 use super::quadric::Quadric;
+#[cfg(feature = "full-width")]
 use super::roots::inv_sqrt;
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
@@ -342,7 +343,9 @@ pub(crate) struct FixedSphere {
     /// `eye − centre`: the primary rays' origin offset.
     pub eye_offset: V3<Len>,
     pub radius_sq: I32F32,
-    /// `1/r` of the raw radius bits, as [`inv_sqrt`] returns it: `y·2^-shift`.
+    /// `1/r` of the raw radius bits, as [`inv_sqrt`] returns it: `y·2^-shift`. Only the
+    /// full-width kernel reads it.
+    #[cfg(feature = "full-width")]
     pub inv_radius: (u32, u32),
     #[cfg(feature = "full-width")]
     /// Normalized models: each lobe's weight times its normalization factor, exact.
@@ -675,6 +678,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .filter(|r| *r >= MIN_SCALED_RADIUS)
                 .ok_or(out_of_range(item, "radius"))?;
             let radius_raw = radius.to_bits() as i64;
+            #[cfg(feature = "full-width")]
             let inv_radius =
                 inv_sqrt((radius_raw * radius_raw) as u64).ok_or(out_of_range(item, "radius"))?;
             to_levels([m.albedo.r, m.albedo.g, m.albedo.b], item, "albedo")?;
@@ -703,6 +707,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 center,
                 eye_offset: each3(|c| eye[c] - center[c]),
                 radius_sq: I32F32::from_bits(radius_raw * radius_raw),
+                #[cfg(feature = "full-width")]
                 inv_radius,
                 kd_albedo,
                 ks,
