@@ -467,20 +467,29 @@ fn out_of_range(item: Item, field: &'static str) -> RenderError {
     RenderError::OutOfFixedRange { item, field }
 }
 
-fn to_len(v: Vec3, scale: f32, item: Item, field: &'static str) -> Result<V3<Len>, RenderError> {
-    let c = [v.x, v.y, v.z].map(|c| fixed_bits_i32(c * scale, 16).map(Len::from_bits));
-    match c {
-        [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
-        _ => Err(out_of_range(item, field)),
+/// `v·scale` per component in fixed point with `frac` fraction bits ([`fixed_bits`]), if
+/// each is within `lo..=hi`. Out of line: every point, colour and direction of the prepare
+/// goes through it.
+#[inline(never)]
+fn scaled_bits(v: [f32; 3], scale: f32, frac: u32, (lo, hi): (i64, i64)) -> Option<[i64; 3]> {
+    let mut out = [0i64; 3];
+    for (o, c) in out.iter_mut().zip(v) {
+        *o = fixed_bits(c * scale, frac).filter(|b| (lo..=hi).contains(b))?;
     }
+    Some(out)
+}
+
+fn to_len(v: Vec3, scale: f32, item: Item, field: &'static str) -> Result<V3<Len>, RenderError> {
+    let range = (i32::MIN as i64, i32::MAX as i64);
+    scaled_bits([v.x, v.y, v.z], scale, 16, range)
+        .map(|b| b.map(|c| Len::from_bits(c as i32)))
+        .ok_or(out_of_range(item, field))
 }
 
 fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
-    let c = [v.x, v.y, v.z].map(|c| fixed_bits(c * scale, 48).map(I16F48::from_bits));
-    match c {
-        [Some(x), Some(y), Some(z)] => Ok([x, y, z]),
-        _ => Err(out_of_range(Item::Camera, "vfov")),
-    }
+    scaled_bits([v.x, v.y, v.z], scale, 48, (i64::MIN, i64::MAX))
+        .map(|b| b.map(I16F48::from_bits))
+        .ok_or(out_of_range(Item::Camera, "vfov"))
 }
 
 /// The I2F30 unit vector of `d`, a unit vector in `f32` (within `2⁻²³` of unit length):
@@ -508,20 +517,16 @@ fn unit_q30(d: Vec3) -> V3<Unit> {
     v.map(|c| Unit::from_bits(c - (mul_ii(c, half_eps) >> 51) as i32))
 }
 
-/// Per-channel levels checked against [`MAX_LEVEL`]. Out of line: the prepare converts four
-/// colours.
-#[inline(never)]
+/// Per-channel levels checked against [`MAX_LEVEL`]: U16F16 bits up to `MAX_LEVEL·2¹⁶`,
+/// which is where the `f32` levels up to `MAX_LEVEL` round to (the next `f32` above it,
+/// `MAX_LEVEL + 2⁻⁹`, rounds above). A scene's colours and factors are checked
+/// non-negative, and so are their products; a negative level is refused all the same,
+/// unless it rounds to zero.
 fn to_levels(c: [f32; 3], item: Item, field: &'static str) -> Result<V3<U16F16>, RenderError> {
-    let mut out = [U16F16::ZERO; 3];
-    for (o, v) in out.iter_mut().zip(c) {
-        if !(0.0..=MAX_LEVEL).contains(&v) {
-            return Err(out_of_range(item, field));
-        }
-        *o = fixed_bits_u32(v, 16)
-            .map(U16F16::from_bits)
-            .ok_or(out_of_range(item, field))?;
-    }
-    Ok(out)
+    const MAX_BITS: i64 = (MAX_LEVEL as i64) << 16;
+    scaled_bits(c, 1.0, 16, (0, MAX_BITS))
+        .map(|b| b.map(|c| U16F16::from_bits(c as u32)))
+        .ok_or(out_of_range(item, field))
 }
 
 /// `2^k` as an `f32`, for `k` in `-126..=127`.
