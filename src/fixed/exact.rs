@@ -38,8 +38,10 @@ impl Exact {
 }
 
 /// `p · 2^e` as a `u32`, saturating at `u32::MAX`; bits shifted out at the bottom are
-/// dropped (rounded toward zero).
-#[inline(always)]
+/// dropped (rounded toward zero). Out of line on ARMv6-M, for its flash: the narrow
+/// kernel's precise lobe takes it twice, and few pixels take that.
+#[cfg_attr(not(shadeline_short_mul), inline(always))]
+#[cfg_attr(shadeline_short_mul, inline(never))]
 pub(crate) fn shift_saturating(p: u64, e: i32) -> u32 {
     if p == 0 {
         return 0;

@@ -948,8 +948,11 @@ const fn sqrt_table() -> [u32; 257] {
 
 /// `√x` of a Q30 value in `[0, 2³⁰]`, as Q15: the value normalized by an even shift to
 /// `[¼, 1)`, [`SQRT_TABLE`] and linear interpolation (within `2⁻¹⁷` relative: `√''/√ ≥ −4`
-/// on `[¼, 1)`, bins `2⁻⁸` wide), rounded.
-#[inline(always)]
+/// on `[¼, 1)`, bins `2⁻⁸` wide), rounded. Out of line on ARMv6-M: the pixel loop calls it
+/// from two places, and one copy is 188 bytes smaller there at no more instructions per
+/// frame (QEMU counts).
+#[cfg_attr(not(shadeline_short_mul), inline(always))]
+#[cfg_attr(shadeline_short_mul, inline(never))]
 fn sqrt_q30(x: u32) -> i32 {
     if x == 0 {
         return 0;

@@ -229,7 +229,9 @@ impl Divisor {
 }
 
 /// `x >> k` for `k ≤ 127`, if it fits `i64`. From the two 64-bit halves: on a 32-bit core
-/// a variable shift of an `i128` is a long inline sequence, of an `i64` one call.
+/// a variable shift of an `i128` is a long inline sequence, of an `i64` one call. Out of
+/// line on ARMv6-M, for its flash.
+#[cfg_attr(shadeline_short_mul, inline(never))]
 fn shift_to_i64(x: i128, k: u32) -> Option<i64> {
     let (high, low) = ((x >> 64) as i64, x as u64);
     match k {

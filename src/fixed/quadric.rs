@@ -37,8 +37,10 @@ pub(crate) struct Step {
 impl Quadric {
     /// The quadric along the row at offset `y` (`dy`): `(e₀, e₁, e₂)` with
     /// `q = e₀ + e₁·x + e₂·x²`. Wrapping arithmetic: every partial sum is a value (or half a
-    /// difference) of the quadric inside the frame, which its scale keeps within `2⁶²`.
-    #[inline(always)]
+    /// difference) of the quadric inside the frame, which its scale keeps within `2⁶²`. Out of
+    /// line on ARMv6-M, for its flash: once per sphere and row.
+    #[cfg_attr(not(shadeline_short_mul), inline(always))]
+    #[cfg_attr(shadeline_short_mul, inline(never))]
     pub(crate) fn row(&self, y: i32) -> [i64; 3] {
         let [c00, c10, c01, c20, c11, c02] = self.c;
         let e0 = c00.wrapping_add(mul_wide(c01.wrapping_add(mul_wide(c02, y)), y));
