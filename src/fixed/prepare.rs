@@ -884,6 +884,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// says which item and field keep it from them (the first found).
     #[inline(never)]
     fn prepare_narrow(&mut self, scene: &Scene<S, L>) -> Result<(), (Item, &'static str)> {
+        // Without the full-width kernel `prepare_fields` has refused these already.
+        #[cfg(feature = "full-width")]
         if let Some(light) = self
             .lights
             .iter()
@@ -891,6 +893,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         {
             return Err((Item::Light(light), "type"));
         }
+        #[cfg(feature = "full-width")]
         if let Some(sphere) = self.spheres.iter().position(|s| s.normalized) {
             return Err((Item::Sphere(sphere), "model"));
         }
