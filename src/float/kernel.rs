@@ -46,8 +46,8 @@
 //!
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
 //! compiler sees the packet loop as one function. The one exception is the second and third
-//! shadings of anti-aliased edges (`shade_filtered` in [`super::edges`]): out of line and
-//! cold, so that the kernel holds one copy of itself, not three.
+//! shadings of anti-aliased edges (`shade_filtered` in `float::edges`, with `antialias`): out
+//! of line and cold, so that the kernel holds one copy of itself, not three.
 
 #[cfg(feature = "area-lights")]
 use super::area;
