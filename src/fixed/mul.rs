@@ -4,20 +4,21 @@
 //! Every product the kernel forms has two operands that fit 32 bits (their formats bound
 //! them, see [`super`]'s table), so it never needs a 64×64 product, let alone an overflow-
 //! checked one. (The prepare's exact quadrics, and the row test of the spans without the
-//! full-width kernel, need 64×64→128: [`mul_128`] and [`mul_u128`], from four of these.) On targets with a widening multiply instruction these are the plain
+//! full-width kernel, need 64×64→128: [`mul_128`], [`mul_128_u`] and [`mul_u128`], from four
+//! of these.) On targets with a widening multiply instruction these are the plain
 //! `i64`/`u64` products. On ARMv6-M and ARMv8-M Baseline (`cfg(shadeline_short_mul)`, set by
 //! the build script), whose only multiplier is 32×32→32, a 64-bit product is otherwise a call
 //! to `__aeabi_lmul` (a full 64×64 product, about 40 instructions with the call); here it is
 //! four 16×16→32 `MULS` and the carries between them, about 20 instructions, in one shared
 //! out-of-line routine per signedness ([`mul_uu`], [`mul_ii`], [`mul_iu`]).
 //!
-//! Out of line, not inline at each product, because that is both smaller and faster on
-//! ARMv6-M: a call costs a few instructions, and an inline sequence needs eight registers
-//! where the pixel loop has eight low ones for all its state (the likely reason the inline
-//! form was slower; the figures are what was measured). Measured on the M0 firmware's frame (QEMU counts), the shared
-//! routines against the sequences inline in the narrow kernel: 25,676 against 27,010 bytes
-//! of shadeline's code and 6,730,229 against 6,742,924 instructions at `opt-level = "s"`;
-//! 30,478 against 31,696 bytes and 6,566,236 against 6,619,899 instructions at 3.
+//! Out of line, not inline at each product, because that is both smaller and faster on ARMv6-M: a
+//! call costs a few instructions, and an inline sequence needs eight registers where the pixel loop
+//! has eight low ones for all its state (the likely reason the inline form was slower; the figures
+//! are what was measured). Measured on the M0 firmware's frame (QEMU counts), the shared routines
+//! against the sequences inline in the narrow kernel: 25,676 against 27,010 bytes of shadeline's
+//! code and 6,730,229 against 6,742,924 instructions at `opt-level = "s"`; 30,478 against 31,696
+//! bytes and 6,566,236 against 6,619,899 instructions at 3.
 //!
 //! The routines are exact, so a frame is the same bits on every target
 //! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
@@ -196,6 +197,16 @@ fn split_iu(a: i32, b: u32) -> i64 {
 pub(crate) fn mul_128(a: i64, b: i64) -> i128 {
     let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
     if (a < 0) != (b < 0) {
+        -p
+    } else {
+        p
+    }
+}
+
+/// `a·b` of an `i64` and a `u64`, exact.
+pub(crate) fn mul_128_u(a: i64, b: u64) -> i128 {
+    let p = mul_u128(a.unsigned_abs(), b) as i128;
+    if a < 0 {
         -p
     } else {
         p

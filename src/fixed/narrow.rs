@@ -3,13 +3,12 @@
 //!
 //! # Why it exists
 //!
-//! The full-width kernel (`kernel`, feature `full-width`) holds unit vectors in I2F30 and lengths in
-//! I16F16, so nearly every product is 32×32→64 bits: one instruction on a Cortex-M4 or an
-//! RV32IM core, but about twenty on ARMv6-M (Cortex-M0/M0+, RP2040), whose multiplier is
-//! 32×32→32, and a lit pixel makes about 85 of them, on vectors that do not fit the M0's
-//! eight low registers. This kernel shades a pixel from a few scalars instead, most of them
-//! forward-differenced along the row, in 15- and 16-bit fractions where a product is one
-//! `MULS`.
+//! The full-width kernel (`kernel`, feature `full-width`) holds unit vectors in I2F30 and lengths
+//! in I16F16, so nearly every product is 32×32→64 bits: one instruction on a Cortex-M4 or an RV32IM
+//! core, but about twenty on ARMv6-M (Cortex-M0/M0+, RP2040), whose multiplier is 32×32→32, and a
+//! lit pixel makes about 85 of them, on vectors that do not fit the M0's eight low registers. This
+//! kernel shades a pixel from a few scalars instead, most of them forward-differenced along the
+//! row, in 15- and 16-bit fractions where a product is one `MULS`.
 //!
 //! # When it applies
 //!
@@ -75,13 +74,12 @@
 //!
 //! A pixel below the cutoff whose fast lobe is not within that (the bright part of a narrow
 //! highlight), or a Blinn-Phong pixel whose `|L + V|` is below ¾ (where the half vector is
-//! ill-conditioned and the fast `h` is not within its bound), takes
-//! `precise_lobe`: the same formulas in 30-bit fractions, from the same exact `|D|²`, `E′`,
-//! `G` and `D·L`, with `σ` and `√E′` from [`super::roots`] instead of the tables (`h` within
-//! `2⁻²⁵`, `2¹⁰` times closer than the fast one), and [`super::pow::lobe`]. It forms no vector
-//! either, so the narrow kernel needs none of the full-width kernel's stages. On the
-//! exponent series at 320×240 that is 295 of its 11,840
-//! covered pixels (test `few_pixels_take_the_precise_lobe`). Every other stage is the fast
+//! ill-conditioned and the fast `h` is not within its bound), takes `precise_lobe`: the same
+//! formulas in 30-bit fractions, from the same exact `|D|²`, `E′`, `G` and `D·L`, with `σ` and
+//! `√E′` from [`super::roots`] instead of the tables (`h` within `2⁻²⁵`, `2¹⁰` times closer than
+//! the fast one), and [`super::pow::lobe`]. It forms no vector either, so the narrow kernel needs
+//! none of the full-width kernel's stages. On the exponent series at 320×240 that is 295 of its
+//! 11,840 covered pixels (test `few_pixels_take_the_precise_lobe`). Every other stage is the fast
 //! one, whatever the encoding: a pixel's linear colour does not depend on the encoding.
 //!
 //! Every step is integer arithmetic with the same bits on every target; products are
@@ -305,15 +303,16 @@ fn fast_cosines(dl: i64, (sigma, sigma2, nv): (i32, u32, i32), g: i64, g_shift: 
     (nl, ld)
 }
 
-/// `|L + V|²` (Q30) below which the fast Blinn-Phong `h` is not within [`H_ERROR`](super::prepare::H_ERROR): `9/16`.
-/// Its error grows as `1/|L + V|` (the half vector of a light nearly behind the surface is
-/// ill-conditioned), and is within it from `|L + V| = ¾` on (test `fast_h_within_its_bound`).
+/// `|L + V|²` (Q30) below which the fast Blinn-Phong `h` is not within
+/// [`H_ERROR`](super::prepare::H_ERROR): `9/16`. Its error grows as `1/|L + V|` (the half vector of
+/// a light nearly behind the surface is ill-conditioned), and is within it from `|L + V| = ¾` on
+/// (test `fast_h_within_its_bound`).
 const BLINN_LEN2_MIN: u32 = 9 << 26;
 
 /// The fast `h = 1 − cos` (Q31, saturated: `h ≥ 1` is a lobe of 0) of Phong (`1 − R·V`) or
 /// Blinn-Phong (`1 − N·H`) from `N·L`, `N·V` and `L·D̂` (Q15), and whether it is within
-/// [`H_ERROR`](super::prepare::H_ERROR): not for Blinn-Phong where `|L + V|² < 9/16`, where the `h` given is 0 if the
-/// lobe can be anything but 0 (`N·H > 0`), so that the precise lobe decides.
+/// [`H_ERROR`](super::prepare::H_ERROR): not for Blinn-Phong where `|L + V|² < 9/16`, where the `h`
+/// given is 0 if the lobe can be anything but 0 (`N·H > 0`), so that the precise lobe decides.
 #[inline(always)]
 fn fast_h(blinn: bool, nl: i32, nv: i32, ld: i32) -> (u32, bool) {
     // h in Q29 (|h| < 2 here).

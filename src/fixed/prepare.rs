@@ -1,10 +1,10 @@
 //! The prepare step of the fixed path: the scene converted to fixed point, once per frame.
 //!
-//! This is the only place the fixed path touches floating point: `f32` arithmetic (IEEE
-//! `+ − × ÷`, exact power-of-two scaling), `libm`'s `sqrtf`/`floorf`/`ceilf` and the
-//! camera's tangent (`Camera::tan_half_fov`), the same operations on every target, followed by exact
-//! conversions to fixed bits ([`super::convert`]). So the prepared numbers, and with them every pixel, are the same bits on a
-//! host, a Cortex-M0 and a RISC-V core.
+//! This is the only place the fixed path touches floating point: `f32` arithmetic (IEEE `+ − × ÷`,
+//! exact power-of-two scaling), `libm`'s `sqrtf`/`floorf`/`ceilf` and the camera's tangent
+//! (`Camera::tan_half_fov`), the same operations on every target, followed by exact conversions to
+//! fixed bits ([`super::convert`]). So the prepared numbers, and with them every pixel, are the
+//! same bits on a host, a Cortex-M0 and a RISC-V core.
 //!
 //! What it does, in order: check the size and the camera's plane scale; pick the scene's
 //! power-of-two scale; convert and check every sphere, material and light (each refusal is
@@ -15,7 +15,7 @@
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
-use super::mul::{mul_128, mul_ii, mul_u128};
+use super::mul::{mul_128, mul_128_u, mul_ii, mul_u128};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_rows;
 use super::quadric::Quadric;
@@ -242,16 +242,6 @@ fn shift_to_i64(x: i128, k: u32) -> Option<i64> {
             (top == 0 || top == -1).then_some((((high as u64) << (64 - k)) | (low >> k)) as i64)
         }
         _ => Some(high >> (k - 64).min(63)),
-    }
-}
-
-/// `a·b` of an `i64` and a `u64`, exact.
-fn mul_128_u(a: i64, b: u64) -> i128 {
-    let p = mul_u128(a.unsigned_abs(), b) as i128;
-    if a < 0 {
-        -p
-    } else {
-        p
     }
 }
 
@@ -584,11 +574,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         antialias: false,
     };
 
-    /// Prepares `scene` for a `width × height` image into `self`, in place: what
-    /// [`new`](Self::new) returns, without the prepared frame ever being on the stack (the
-    /// M0 firmware prepares its `static` frame this way, with a peak stack of 2,244 bytes). Fails like `new`;
-    /// on an error `self` is left [`EMPTY`](Self::EMPTY), never half prepared. Spans are on,
-    /// whatever [`with_spans`](Self::with_spans) set before.
+    /// Prepares `scene` for a `width × height` image into `self`, in place: what [`new`](Self::new)
+    /// returns, without the prepared frame ever being on the stack (the M0 firmware prepares its
+    /// `static` frame this way, with a peak stack of 2,244 bytes). Fails like `new`; on an error
+    /// `self` is left [`EMPTY`](Self::EMPTY), never half prepared. Spans are on, whatever
+    /// [`with_spans`](Self::with_spans) set before.
     ///
     /// ```
     /// use shadeline::{exponent_series_with_capacity, PreparedFixed, Render, Rgb565, Scene};
