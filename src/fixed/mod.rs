@@ -124,17 +124,15 @@
 //!
 //! # Modules
 //!
-//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within
-//! screen rectangles, feature `full-width`) · `outline` (exact spans from the narrow
-//! kernel's quadric, without `full-width`) · `row` (the
-//! row driver) · `narrow` (the 16-bit kernel and when it applies) · `kernel` (the full-width kernel's
-//! stages, feature `full-width`) ·
-//! `edges` (anti-aliased silhouettes, features `antialias` and `full-width`) ·
-//! `area` (sphere lights' closed forms, features `area-lights` and `full-width`) ·
-//! `pow` (the lobe) · `roots` (`√x`, `1/√x`) ·
-//! `quadric` (the narrow kernel's exact quadrics and their steps) · `vector` (dot products
-//! and normalization) · `mul` (exact 32×32→64 products, leading
-//! zeros) · `exact` (`f32` as mantissa and exponent).
+//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within screen
+//! rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
+//! without `full-width`) · `row` (the row driver) · `narrow` (the 16-bit kernel and when it
+//! applies) · `kernel` (the full-width kernel's stages, feature `full-width`) · `edges`
+//! (anti-aliased silhouettes, features `antialias` and `full-width`) · `area` (sphere lights'
+//! closed forms, features `area-lights` and `full-width`) · `pow` (the lobe) · `roots` (`√x`,
+//! `1/√x`) · `quadric` (the narrow kernel's exact quadrics and their steps) · `vector` (dot
+//! products and normalization) · `mul` (exact 32×32→64 products, leading zeros) · `exact` (`f32` as
+//! mantissa and exponent).
 
 #[cfg(all(feature = "area-lights", feature = "full-width"))]
 mod area;
