@@ -143,39 +143,47 @@ fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
 /// `c₀₀` from the directions `(0, 0)`, `c₁₀` from `(0, 1)` …, `c₀₂` from `(2, 2)`.
 const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
 
-/// The quadric `E′` over `den`, from `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|²` (see [`Quadric`])
-/// with `D = dc + x·sx + y·sy` (`dirs`), `r²` and `w`, the cross products of `oc` with the
-/// three directions: each raw coefficient, `r²·(Dₐ·D_b) − wₐ·w_b` (doubled off the
-/// diagonal), is a product of the directions' Gram matrix and of `w`, exact in `i128`,
-/// divided as soon as it is made (one `i128` at a time on the stack). A loop over
-/// [`PAIRS`], for the flash: once per sphere.
-#[inline(never)]
-fn e_quadric(r2: i64, w: &[V3<i64>; 3], dirs: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
-    let mut c = [0; 6];
-    for (slot, &(a, b)) in c.iter_mut().zip(&PAIRS) {
-        let (u, v) = (dirs[a % 3], dirs[b % 3]);
-        let dot = each3(|k| mul_ii(u[k] as i32, v[k] as i32));
-        let raw = mul_128(r2, dot[0] + dot[1] + dot[2]) - dot_128(w[a % 3], w[b % 3]);
-        *slot = den.divide(if a == b { raw } else { 2 * raw })?;
-    }
-    Some(Quadric { c })
+/// Which of a sphere's two quadrics [`quadric`] makes (see [`Quadric`]), with what it needs
+/// beyond the cross products `w` of `oc` with the three directions.
+enum Form<'a> {
+    /// `E′`, from `r²` and the directions: `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|²`.
+    E(i64, &'a [V3<i64>; 3]),
+    /// `G`, from the cross products `v` of `L` with the directions:
+    /// `G·r·2⁸⁸ = (oc × D)·(L × D)`.
+    G(&'a [V3<i64>; 3]),
 }
 
-/// The quadric `G` over `den`, from `G·r·2⁸⁸ = (oc × D)·(L × D)` (see [`Quadric`]) with `w`
-/// and `v` the cross products of `oc` and of `L` with the three directions of
-/// [`e_quadric`]: each raw coefficient `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal), exact
-/// in `i128`, divided one at a time.
+/// A sphere's quadric `form` over `den`, from the cross products `w` of `oc` with the three
+/// directions of `D = dc + x·sx + y·sy`. Each raw coefficient is exact in `i128`: for `G`
+/// the symmetric product `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal), for `E′`
+/// `r²·(Dₐ·D_b) − wₐ·w_b`, doubled off the diagonal. Each is divided as soon as it is made
+/// (one `i128` at a time on the stack), into `c`. One loop over [`PAIRS`] for both, for the
+/// flash: once per sphere and per sphere and light. `None` if a coefficient does not fit.
 #[inline(never)]
-fn g_quadric(w: &[V3<i64>; 3], v: &[V3<i64>; 3], den: &Divisor) -> Option<Quadric> {
-    let mut c = [0; 6];
-    for (slot, &(a, b)) in c.iter_mut().zip(&PAIRS) {
-        let mut raw = dot_128(w[a % 3], v[b % 3]);
+fn quadric(w: &[V3<i64>; 3], form: Form, den: &Divisor, c: &mut Quadric) -> Option<()> {
+    let v = match form {
+        Form::E(..) => w,
+        Form::G(v) => v,
+    };
+    for (slot, &(a, b)) in c.c.iter_mut().zip(&PAIRS) {
+        let (a, b) = (a % 3, b % 3);
+        // The symmetric product; for `E′`, `v` is `w` and its two halves are equal.
+        let mut raw = dot_128(w[a], v[b]);
         if a != b {
-            raw += dot_128(w[b % 3], v[a % 3]);
+            raw += match form {
+                Form::E(..) => raw,
+                Form::G(_) => dot_128(w[b], v[a]),
+            };
+        }
+        if let Form::E(r2, dirs) = form {
+            // |Dₐ·D_b| < 3·2⁶⁰ (|D| < 2³⁰): doubled, it fits `i64`.
+            let dot = each3(|k| mul_ii(dirs[a][k] as i32, dirs[b][k] as i32));
+            let dot = dot[0] + dot[1] + dot[2];
+            raw = mul_128(r2, if a == b { dot } else { 2 * dot }) - raw;
         }
         *slot = den.divide(raw)?;
     }
-    Some(Quadric { c })
+    Some(())
 }
 
 /// A positive divisor `m·2^z` held as `⌊(2¹²⁷ − 1)/m⌋` with `m` in `[2⁶³, 2⁶⁴)`, so that a
@@ -983,10 +991,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // D = dc + x·sx + y·sy: products of the three directions' Gram matrix and of their
         // cross products with oc and L.
         let dirs = [dc, sx, sy];
-        let w = dirs.map(|v| cross_64(oc, v));
-        let Some(e) = e_quadric(r2, &w, &dirs, &e_den) else {
+        let w = [cross_64(oc, dc), cross_64(oc, sx), cross_64(oc, sy)];
+        let mut e = Quadric::default();
+        if quadric(&w, Form::E(r2, &dirs), &e_den, &mut e).is_none() {
             return Err("radius");
-        };
+        }
         if self
             .narrow_lights
             .push([NarrowLight::default(); L])
@@ -1043,7 +1052,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// Sphere `i`'s narrow constants for light `light`, from the cross products `w` of its
-    /// eye offset with the quadrics' three directions `dirs` (see [`e_quadric`]); the field
+    /// eye offset with the quadrics' three directions `dirs` (see [`quadric`]); the field
     /// that keeps the sphere from the narrow kernel if the light is not distant, `G` does not
     /// fit (`radius`) or a caster is too close (`center`, see [`Self::narrow_casters`]). Out
     /// of line, like the sphere's.
@@ -1059,7 +1068,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err("radius");
         };
         let l = to_light.map(|c| c.to_bits() as i64);
-        let g = g_quadric(w, &dirs.map(|d| cross_64(l, d)), g_den).ok_or("radius")?;
+        let mut g = Quadric::default();
+        quadric(
+            w,
+            Form::G(&[
+                cross_64(l, dirs[0]),
+                cross_64(l, dirs[1]),
+                cross_64(l, dirs[2]),
+            ]),
+            g_den,
+            &mut g,
+        )
+        .ok_or("radius")?;
         let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
         Ok(NarrowLight {
             g,
