@@ -73,16 +73,24 @@ impl NarrowView {
     /// the other prepare helpers there: it runs a few times a frame.
     #[cfg_attr(shadeline_short_mul, inline(never))]
     fn direction(&self, dx: i64, dy: i64) -> [i64; 3] {
-        each3(|i| self.forward[i] as i64 + dy * self.step_y[i] as i64 + dx * self.step_x[i] as i64)
+        // |dx|, |dy| < 2¹⁷ (the frame is at most `MAX_DIMENSION` wide and high) and the
+        // steps are `i32`: each product is one exact 32×32→64 product.
+        each3(|i| {
+            self.forward[i] as i64
+                + mul_ii(dy as i32, self.step_y[i])
+                + mul_ii(dx as i32, self.step_x[i])
+        })
     }
 
     /// `|D|²/2¹⁶` of [`direction`](Self::direction)`(dx, dy)`, each component taken to its
-    /// top bits first.
+    /// top bits first. The prepare's plane-scale check bounds `|dx·step_x|` and
+    /// `|dy·step_y|` by `MAX_PLANE_SCALE·2²⁹ < 2³⁶` and `forward` is below `2³⁰`, so each
+    /// component's top bits fit `i32` and their squares are exact 32×32→64 products.
     #[cfg_attr(shadeline_short_mul, inline(never))]
     fn len2_at(&self, dx: i64, dy: i64) -> i64 {
         self.direction(dx, dy)
             .iter()
-            .map(|&c| (c >> 8) * (c >> 8))
+            .map(|&c| mul_ii((c >> 8) as i32, (c >> 8) as i32))
             .sum::<i64>()
     }
 }
@@ -91,7 +99,8 @@ impl NarrowView {
 /// ARMv6-M: three vectors a frame.
 #[cfg_attr(shadeline_short_mul, inline(never))]
 fn to_q29(v: V3<I16F48>) -> [i64; 3] {
-    v.map(|c| (c.to_bits().saturating_add(1 << 18)) >> 19)
+    // ((c >> 18) + 1) >> 1 is (c + 2¹⁸) >> 19, with no overflow near `i64::MAX`.
+    v.map(|c| ((c.to_bits() >> 18) + 1) >> 1)
 }
 
 /// `a·b` of two integer vectors whose products fit `i64` each, exact.
