@@ -15,12 +15,13 @@
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
-use super::mul::{mul_128, mul_128_u, mul_ii, mul_u128};
+use super::mul::{mul_128, mul_128_u, mul_ii, mul_u128, mul_uu};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_rows;
 use super::quadric::Quadric;
 #[cfg(feature = "full-width")]
 use super::roots::inv_sqrt;
+use super::roots::sqrt;
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
 use super::vector::{each3, Len, Unit, V3};
@@ -1101,30 +1102,38 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The casters of sphere `i` for the distant light `to_light` and their filter, as
     /// [`NarrowLight`] holds them: `(casters, ahead, reach)`. One pass over the other
-    /// spheres, on the frame's scaled numbers.
+    /// spheres, on the frame's scaled integers.
     ///
     /// A shadow ray from the sphere's surface, lifted by `ε`, starts within `r + ε` of the
     /// half-line from its centre toward the light, so only a sphere whose centre comes within
     /// `r + r_k + ε` of that half-line can block it. The mask takes the spheres within
-    /// `r + r_k + 5ε` and `10⁻³` of the radii (the rule of [`Scene::shadow_casters`], whose
-    /// margins dwarf this `f32` arithmetic's rounding), so it is never short of a caster.
-    /// `ahead` and `reach` are the loosest over the casters, widened by the fast `N·L`'s error
-    /// (`2⁻¹²`, and `2⁻¹¹` for its square); with no caster nothing passes.
+    /// `r + r_k + 5ε` and `2⁻⁹` of the radii (looser than the rule of
+    /// [`Scene::shadow_casters`]), so it is never short of a caster. `ahead` and `reach` are
+    /// the loosest over the casters, each rounded toward passing more pixels, then widened by
+    /// the fast `N·L`'s error (`2⁻¹²`, and `2⁻¹¹` for its square); with no caster nothing
+    /// passes.
+    ///
+    /// Integers only, from exact 32×32→64 products: the scene lies within `2¹³` units, so
+    /// every centre and radius is below `2²⁹` raw and every difference below `2³⁰`. The
+    /// distance of a caster's centre from the half-line is `|Δ × L|` (no cancellation, unlike
+    /// `|Δ|² − (Δ·L)²`), each component taken to raw units (rounded down, within one unit)
+    /// and the root ([`sqrt`], within `2⁻²⁹`) lowered by four units and that relative error,
+    /// which also covers `|L|`'s distance from 1 (`2⁻²⁹`).
     ///
     /// `None` if a caster is within `4ε` of the sphere (the narrow kernel's caster test
-    /// assumes its shadow rays start outside the casters; checked exactly, in integers), or
-    /// the frame has spheres beyond the mask's 32 bits. Out of line: once per sphere and
-    /// light.
+    /// assumes its shadow rays start outside the casters), or the frame has spheres beyond
+    /// the mask's 32 bits. Out of line: once per sphere and light.
     #[inline(never)]
     fn narrow_casters(&self, i: usize, to_light: V3<Unit>) -> Option<(u32, i32, u32)> {
         let own = self.spheres.get(i)?;
         let eps = self.epsilon.to_bits() as i64;
         let radius = |s: &FixedSphere| s.radius.to_bits() as i64;
         let r = radius(own);
-        let l = to_light.map(|c| to_f32(c.to_bits() as i64, 30));
-        let eps_f = to_f32(eps, 16);
-        let lift = to_f32(r, 16) + eps_f;
-        let (mut mask, mut ahead, mut reach) = (0u32, f32::NEG_INFINITY, f32::NEG_INFINITY);
+        let l = to_light.map(|c| c.to_bits());
+        // r + ε is at least one unit (2¹⁶ raw) and below 2³¹: the `max`es only show the
+        // compiler that no divisor below is 0.
+        let lift = ((r + eps) as u64).max(1);
+        let (mut mask, mut ahead, mut reach) = (0u32, i64::MIN, i64::MIN);
         for (k, c) in self.spheres.iter().enumerate() {
             if k == i {
                 continue;
@@ -1133,41 +1142,52 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 return None;
             }
             let rk = radius(c);
-            let d = each3(|j| own.center[j].to_bits() as i64 - c.center[j].to_bits() as i64);
-            let delta = d.map(|v| to_f32(v, 16));
-            let along = delta[0] * l[0] + delta[1] * l[1] + delta[2] * l[2];
-            let across = each3(|j| delta[j] - along * l[j]);
-            let across2 = across[0] * across[0] + across[1] * across[1] + across[2] * across[2];
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(c.center[j].to_bits()));
+            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
+            // Δ·L in raw units times 2³⁰, exact.
+            let along = mul_ii(d[0], l[0]) + mul_ii(d[1], l[1]) + mul_ii(d[2], l[2]);
+            // |Δ × L| in raw units, rounded down per component: below 2³¹ each.
+            let cross =
+                |a: usize, b: usize| ((mul_ii(d[a], l[b]) - mul_ii(d[b], l[a])) >> 30) as i32;
+            let cross = [cross(1, 2), cross(2, 0), cross(0, 1)];
+            let cross2 = cross.iter().map(|&v| mul_ii(v, v) as u64).sum::<u64>();
+            let root = sqrt(cross2);
+            let across = (root - (root >> 28)) as i64 - 4;
+            let radii = r + rk;
+            let near = radii + (radii >> 9) + 5 * eps;
             // The half-line's closest point to the caster's centre: its start where the
-            // caster lies behind the sphere along the light (`along ≥ 0`).
-            let dist2 = if along < 0.0 {
-                across2
+            // caster lies behind the sphere along the light (`Δ·L ≥ 0`).
+            let far = if along < 0 {
+                across >= near
             } else {
-                delta[0] * delta[0] + delta[1] * delta[1] + delta[2] * delta[2]
+                len2 >= mul_ii(near as i32, near as i32)
             };
-            let radii = to_f32(r + rk, 16);
-            let near = radii + 5.0 * eps_f + 1.0e-3 * radii;
-            if dist2 >= near * near {
+            if far {
                 continue;
             }
             mask |= 1 << k;
-            let apart = r + rk + 4 * eps;
-            if d.iter().map(|&v| v * v).sum::<i64>() <= apart * apart {
+            let apart = (radii + 4 * eps) as i32;
+            if len2 <= mul_ii(apart, apart) {
                 return None;
             }
-            let gap = libm::sqrtf(across2) - to_f32(rk, 16);
-            ahead = ahead.max(-along / lift);
-            reach = reach.max(if gap <= 0.0 {
-                1.0
+            // −(Δ·L)/(r + ε) in Q15, rounded up (by a whole step where it is positive).
+            let q = (along.unsigned_abs() / (lift << 15).max(1)) as i64;
+            ahead = ahead.max(if along < 0 { q + 1 } else { -q });
+            // 1 − (gap/(r + ε))² in Q30, the ratio rounded down to 30 bits (gap < 2³¹).
+            let gap = across - rk;
+            let g30 = if gap <= 0 {
+                0
             } else {
-                1.0 - (gap / lift) * (gap / lift)
-            });
+                ((gap as u64) << 30) / lift
+            };
+            let g30 = g30.min(u32::MAX as u64) as u32;
+            reach = reach.max((1 << 30) - (mul_uu(g30, g30) >> 30) as i64);
         }
         if mask == 0 {
             return Some((0, i32::MIN, 0));
         }
-        let q15 = (ahead + 1.0 / 4096.0).clamp(-2.0, 2.0) * 32768.0;
-        let q30 = (reach + 1.0 / 2048.0).clamp(0.0, 2.0) * (1u64 << 30) as f32;
+        let q15 = (ahead + 8).clamp(-2 << 15, 2 << 15);
+        let q30 = (reach + (1 << 19)).clamp(0, 2 << 30);
         Some((mask, q15 as i32, q30 as u32))
     }
 
@@ -1325,5 +1345,123 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `narrow_casters` against the same geometry in `f64`, from the prepared integers, over
+    /// random pairs of spheres under a random distant light: the mask never leaves out a
+    /// sphere within the rule of `Scene::shadow_casters` (nor takes one well outside its own),
+    /// and `ahead` and `reach` are never tighter than the exact values widened by the fast
+    /// `N·L`'s error, nor looser than that by more than their rounding.
+    #[test]
+    fn caster_filter_is_the_exact_filter_rounded_outward() {
+        use crate::scene::{Camera, Light, Material, Sphere};
+        use crate::LinearRgb;
+        let mut state = 0x853c_49e6_748f_ea9bu64;
+        let mut next = |lo: f64, hi: f64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)) as f32
+        };
+        let (mut masked, mut left_out) = (0, 0);
+        for round in 0..4000 {
+            let camera = Camera {
+                position: Vec3::new(0.0, 0.0, 40.0),
+                look_at: Vec3::new(0.0, 0.0, 0.0),
+                up: Vec3::new(0.0, 1.0, 0.0),
+                vfov_degrees: 30.0,
+            };
+            let mut scene: Scene<2, 1> = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+            let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0));
+            let mut spheres = [0; 2].map(|_| Sphere {
+                center: Vec3::new(next(-3.0, 3.0), next(-3.0, 3.0), next(-3.0, 3.0)),
+                radius: next(0.2, 1.5),
+                material: Material::default(),
+            });
+            if round % 2 == 1 {
+                // The second sphere ahead of the first along the light, its centre about the
+                // radii from the half-line: where the mask's margins decide (ε is 0.004 here).
+                let Some(u) = (-direction).normalized() else {
+                    continue;
+                };
+                let Some(p) = u.cross(Vec3::new(next(-1.0, 1.0), 1.0, 0.5)).normalized() else {
+                    continue;
+                };
+                let radii = spheres[0].radius + spheres[1].radius;
+                let offset = u.scale(next(1.0, 3.0)) + p.scale(radii + next(0.0, 0.04));
+                spheres[1].center = spheres[0].center + offset;
+            }
+            if spheres.iter().any(|s| scene.add_sphere(*s).is_err()) {
+                continue;
+            }
+            let light = Light::Distant {
+                direction,
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: 1.0,
+            };
+            if scene.add_light(light).is_err() {
+                continue;
+            }
+            let Ok(frame) = PreparedFixed::new(&scene, 64, 48) else {
+                continue;
+            };
+            if frame.narrow.is_none() {
+                continue;
+            }
+            let Some(FixedLight::Distant { to_light, .. }) = frame.lights.first() else {
+                panic!("a distant light");
+            };
+            let l = to_light.map(|c| c.to_bits() as f64);
+            let norm = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+            let l = l.map(|c| c / norm);
+            let eps = frame.epsilon.to_bits() as f64;
+            for (i, k) in [(0, 1), (1, 0)] {
+                let (own, other) = (&frame.spheres[i], &frame.spheres[k]);
+                let d = each3(|j| (own.center[j].to_bits() - other.center[j].to_bits()) as f64);
+                let (r, rk) = (own.radius.to_bits() as f64, other.radius.to_bits() as f64);
+                let along = d[0] * l[0] + d[1] * l[1] + d[2] * l[2];
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let across = (len * len - along * along).max(0.0).sqrt();
+                let dist = if along < 0.0 { across } else { len };
+                let filter = frame.narrow_lights[i][0];
+                let bit = filter.casters & (1 << k) != 0;
+                let radii = r + rk;
+                if dist < radii + 5.0 * eps + 1.0e-3 * radii {
+                    assert!(bit, "sphere {k} left out of {i}'s casters at {dist} raw");
+                }
+                if dist > radii * (1.0 + 1.0 / 512.0) + 5.0 * eps + 16.0 {
+                    assert!(!bit, "sphere {k} among {i}'s casters at {dist} raw");
+                    left_out += 1;
+                }
+                if !bit {
+                    continue;
+                }
+                masked += 1;
+                let lift = r + eps;
+                let ahead = ((-along / lift + 1.0 / 4096.0) * 32768.0).clamp(-65536.0, 65536.0);
+                let got = filter.ahead as f64;
+                assert!(
+                    got >= ahead - 1e-3 && got <= ahead + 2.01,
+                    "ahead {got} for {ahead}"
+                );
+                let gap = across - rk;
+                let reach = if gap <= 0.0 {
+                    1.0
+                } else {
+                    1.0 - (gap / lift).powi(2)
+                };
+                let reach = ((reach + 1.0 / 2048.0) * (1u64 << 30) as f64)
+                    .clamp(0.0, 2.0 * (1u64 << 30) as f64);
+                let got = filter.reach as f64;
+                assert!(
+                    got >= reach - 1.0 && got <= reach + (1 << 18) as f64,
+                    "reach {got} for {reach}"
+                );
+            }
+        }
+        assert!(
+            masked > 1000 && left_out > 3000,
+            "{masked} masked, {left_out} left out"
+        );
     }
 }
