@@ -157,6 +157,13 @@ fn inverse_half_length<T: Real>(h: Vec3<T>) -> T {
     T::select(zero.lt(h2), T::splat(1.0) / h2.sqrt(), zero)
 }
 
+/// Whether this build holds the half-vector lobe of the Blinn-Phong models (crate feature
+/// `blinn-phong`). Without it no [`Scene`](crate::Scene) holds a Blinn-Phong material (it
+/// refuses one with [`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)), and the
+/// kernels test this constant before their per-sphere flag, so the compiler drops their
+/// half-vector code.
+pub(crate) const BLINN_PHONG: bool = cfg!(feature = "blinn-phong");
+
 /// The cosine the specular lobe raises to the power `n`: `R·V` (Phong) or `N·H`
 /// (Blinn-Phong, on lanes where `blinn` is set). Unclamped; the caller clamps at zero.
 ///
@@ -165,7 +172,7 @@ fn inverse_half_length<T: Real>(h: Vec3<T>) -> T {
 #[inline(always)]
 pub fn specular_cosine<T: Real>(n: Vec3<T>, to_light: Vec3<T>, view: Vec3<T>, blinn: T::Mask) -> T {
     let r_dot_v = phong_cosine(n, to_light, view);
-    if !T::any(blinn) {
+    if !BLINN_PHONG || !T::any(blinn) {
         return r_dot_v;
     }
     let h = to_light + view;

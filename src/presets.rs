@@ -6,8 +6,10 @@
 //! Oren–Nayar next to their normalized counterparts (`scenes/microfacets.toml`), and
 //! [`full_moon`] shows why Oren–Nayar exists (`scenes/full-moon.toml`). Those two need the
 //! crate feature `models`: without it they return the scene's refusal of their first such
-//! sphere ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)). [`area_lights`]
-//! shows a sphere light's soft shadows and wider highlights. [`covered_sphere`] of each of
+//! sphere ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)), and so do
+//! [`materials`] and [`area_lights`] without the feature `blinn-phong` (their normalized
+//! Blinn-Phong spheres). [`area_lights`] shows a sphere light's soft shadows and wider
+//! highlights. [`covered_sphere`] of each of
 //! [`model_samples`] is a frame of one reflection model alone, for measuring its cost.
 
 use crate::pixel::LinearRgb;
@@ -425,8 +427,8 @@ fn gallery_stage<const S: usize, const L: usize>(distance: f32) -> Result<Scene<
 /// (`σ` = 0.5), GGX (roughness 0.5, `ior` 1.5), and GGX gold (roughness 0.5, no diffuse).
 /// With [`covered_sphere`], each is a frame whose every pixel is that model's.
 ///
-/// The Oren–Nayar and GGX materials need the crate feature `models` to render: without it
-/// a scene refuses them ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
+/// The Oren–Nayar and GGX materials need the crate feature `models` to render, and the
+/// normalized Blinn-Phong one `blinn-phong`: without them a scene refuses them ([`Problem::ModelNotBuilt`](crate::Problem::ModelNotBuilt)).
 pub fn model_samples() -> [(&'static str, Material); 5] {
     let plastic = Material {
         albedo: LinearRgb::new(0.7, 0.1, 0.08),
@@ -487,7 +489,8 @@ pub fn model_samples() -> [(&'static str, Material); 5] {
 /// runs).
 ///
 /// Fails as [`Scene::add_sphere`] fails for `material` (an Oren–Nayar or GGX material
-/// without the feature `models`, a value out of range).
+/// without the feature `models`, a Blinn-Phong one without `blinn-phong`, a value out of
+/// range).
 pub fn covered_sphere(material: Material) -> Result<Scene<1, 2>, SceneError> {
     let camera = Camera {
         position: Vec3::new(0.0, 0.0, 2.2),

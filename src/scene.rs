@@ -7,10 +7,11 @@
 //! generics backed by `heapless::Vec`, so a scene lives on the stack or in a `static`, and
 //! exceeding a capacity is an error, not an allocation.
 //!
-//! The models Oren–Nayar and GGX are part of the API in every build, but the kernels hold
-//! them only with the crate feature `models` (on by default). Without it, a sphere of such a
-//! material is refused as it is added, with [`Problem::ModelNotBuilt`] on its `model`: a
-//! scene never holds a model the kernels leave out, and never renders another in its place.
+//! The models Oren–Nayar and GGX, and the two Blinn-Phong models, are part of the API in
+//! every build, but the kernels hold them only with the crate features `models` and
+//! `blinn-phong` (both on by default). Without the feature, a sphere of such a material is
+//! refused as it is added, with [`Problem::ModelNotBuilt`] on its `model`: a scene never
+//! holds a model the kernels leave out, and never renders another in its place.
 //!
 //! # Ranges
 //!
@@ -88,14 +89,16 @@ pub struct Camera {
 /// weight and colour, and the weight and exponent of the first specular lobe.
 ///
 /// [`Model::OrenNayar`] and [`Model::Ggx`] exist in every build, but render only with the
-/// crate feature `models` (on by default): without it, [`Scene::add_sphere`] refuses them
+/// crate feature `models`, and [`Model::BlinnPhong`] and [`Model::NormalizedBlinnPhong`] only
+/// with `blinn-phong` (both on by default): without it, [`Scene::add_sphere`] refuses them
 /// with [`Problem::ModelNotBuilt`].
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum Model {
     /// Classic Phong: `ks·I·max(0, R·V)^n`, `R` the light's travel direction mirrored about `N`.
     Phong,
-    /// Classic Blinn-Phong: `ks·I·max(0, N·H)^n` with `H = normalize(L + V)`.
+    /// Classic Blinn-Phong: `ks·I·max(0, N·H)^n` with `H = normalize(L + V)`. Feature
+    /// `blinn-phong`.
     BlinnPhong,
     /// Lambert: the diffuse lobe `kd·albedo/π` alone; `ks` and `shininess` are not used.
     Lambert,
@@ -104,7 +107,7 @@ pub enum Model {
     NormalizedPhong(Specular),
     /// Normalized Blinn-Phong: `kd·albedo/π + Σ wₖ·c(nₖ)·max(0, N·H)^nₖ` with the exact
     /// normalization `c(n) = (n + 2)(n + 4) / (8π(2^(−n/2) + n))`, which makes the lobe's
-    /// directional albedo 1 at normal view (see [`crate::brdf`]).
+    /// directional albedo 1 at normal view (see [`crate::brdf`]). Feature `blinn-phong`.
     NormalizedBlinnPhong(Specular),
     /// Oren–Nayar rough diffuse (the qualitative model of Oren and Nayar, 1994):
     /// `kd·albedo/π·(A + B·max(0, cos(φᵢ − φₒ))·sin α·tan β)`, with `roughness` the standard
@@ -470,9 +473,10 @@ pub enum Problem {
     /// A sphere light overlaps a scene sphere (reported on the light's `radius`, whichever
     /// of the two was added last): every shaded point must see the light from outside.
     LightOverlapsSphere,
-    /// The material's model is Oren–Nayar or GGX, and this build of the crate leaves them
-    /// out: they need the feature `models` (on by default; the firmware builds turn it off).
-    /// Reported on the sphere's `model`. Never returned with the feature on.
+    /// The material's model is one this build of the crate leaves out: Oren–Nayar and GGX
+    /// need the feature `models`, the Blinn-Phong models `blinn-phong` (both on by default;
+    /// the firmware builds turn them off). Reported on the sphere's `model`. Never returned
+    /// with both features on.
     ModelNotBuilt,
 }
 
@@ -536,7 +540,8 @@ impl fmt::Display for Problem {
             Problem::FieldOfViewOutOfRange => "must be between 0 and 180 degrees, exclusive",
             Problem::LightOverlapsSphere => "makes the light's sphere overlap a scene sphere",
             Problem::ModelNotBuilt => {
-                "is oren-nayar or ggx, which this build of shadeline leaves out (feature `models`)"
+                "is a model this build of shadeline leaves out (feature `models` for oren-nayar and \
+                 ggx, `blinn-phong` for the blinn-phong models)"
             }
         })
     }
@@ -758,6 +763,14 @@ impl Material {
         c.non_negative("kd", &[self.kd], MAX_VALUE)?;
         c.non_negative("ks", &[self.ks], MAX_VALUE)?;
         c.positive("shininess", self.shininess, MAX_SHININESS)?;
+        // Refused before the model's own numbers are read.
+        #[cfg(not(feature = "blinn-phong"))]
+        if matches!(
+            self.model,
+            Model::BlinnPhong | Model::NormalizedBlinnPhong(_)
+        ) {
+            return Err(c.err("model", Problem::ModelNotBuilt));
+        }
         if let Some(spec) = self.model.specular() {
             for (lobe, (weight, shininess)) in spec.more_lobes.iter().zip(LOBE_FIELDS) {
                 c.non_negative(weight, &[lobe.weight], MAX_VALUE)?;

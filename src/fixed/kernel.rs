@@ -488,11 +488,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         area: Option<Area>,
     ) -> [u32; 3] {
         let l = incoming.to_light;
-        if !s.blinn && l == [Unit::ZERO; 3] {
+        let blinn = s.blinn();
+        if !blinn && l == [Unit::ZERO; 3] {
             return [0; 3];
         }
-        let half = if s.blinn { half_vector(l, d) } else { None };
-        let Some(h) = lobe_h(s.blinn, n, l, d, half) else {
+        let half = if blinn { half_vector(l, d) } else { None };
+        let Some(h) = lobe_h(blinn, n, l, d, half) else {
             return [0; 3];
         };
         let lobe = widened(lobe(h, s.shininess), s, 0, area); // U1F31
@@ -525,12 +526,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         // H is needed by Blinn-Phong lobes, by Fresnel and by GGX.
         let ggx = is_ggx(s);
-        let half = (s.blinn || s.schlick || ggx)
+        let half = (s.blinn() || s.schlick || ggx)
             .then(|| half_vector(l, d))
             .flatten();
         // Σ wₖcₖ·lobeₖ in U16F16 (GGX has its own lobe, below).
         let mut sum = 0u32;
-        if let Some(h) = lobe_h(s.blinn, n, l, d, half).filter(|_| !ggx) {
+        if let Some(h) = lobe_h(s.blinn(), n, l, d, half).filter(|_| !ggx) {
             let exponents = [s.shininess, s.more_shininess[0], s.more_shininess[1]];
             for (k, (w, e)) in s.weight.iter().zip(exponents).enumerate() {
                 if w.mantissa == 0 {

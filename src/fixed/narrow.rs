@@ -764,13 +764,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 diffuse = each3(|c| diffuse[c].saturating_add(scale_q15(arriving[c], nl)));
                 lit = true;
             }
-            let (h, trusted) = fast_h(sphere.blinn, nl, nv, ld);
+            let (h, trusted) = fast_h(sphere.blinn(), nl, nv, ld);
             if h >= ns.cutoff {
                 continue;
             }
             let lobe = match fast_lobe(ns, sphere.shininess, h, trusted) {
                 Some(lobe) => lobe,
-                None => precise_lobe(sphere.blinn, sphere.shininess, ns, e, d, (g.v, dl.v)),
+                None => precise_lobe(sphere.blinn(), sphere.shininess, ns, e, d, (g.v, dl.v)),
             };
             specular = each3(|c| specular[c].saturating_add(scale_q16(arriving[c], lobe)));
             glossy = true;

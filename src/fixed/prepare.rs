@@ -25,9 +25,9 @@ use super::roots::sqrt;
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
 use super::vector::{each3, Len, Unit, V3};
-use crate::brdf::Params;
 #[cfg(feature = "full-width")]
 use crate::brdf::LOBES;
+use crate::brdf::{Params, BLINN_PHONG};
 use crate::render::RenderError;
 #[cfg(not(feature = "full-width"))]
 use crate::scene::Model;
@@ -385,6 +385,16 @@ pub(crate) struct FixedSphere {
     /// U20F12, saturating.
     #[cfg(all(feature = "area-lights", feature = "full-width"))]
     pub widening: [[u32; 2]; LOBES],
+}
+
+impl FixedSphere {
+    /// Whether the lobe is Blinn-Phong's: always `false` in a build without the feature
+    /// `blinn-phong` ([`BLINN_PHONG`]), whose scenes hold no such sphere, so that the kernels'
+    /// half-vector code is left out.
+    #[inline(always)]
+    pub(crate) fn blinn(&self) -> bool {
+        BLINN_PHONG && self.blinn
+    }
 }
 
 /// A GGX sphere's constants (`α = roughness²`).

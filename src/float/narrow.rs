@@ -67,7 +67,7 @@
 use super::kernel::{combine_with, meets, Packet};
 use super::lane::Lane;
 use super::prepare::{FloatPath, NarrowLight, Prepared, PreparedLight};
-use crate::brdf::Pow;
+use crate::brdf::{Pow, BLINN_PHONG};
 use crate::real::Real;
 use crate::runs::Span;
 use crate::vec3::Vec3;
@@ -171,7 +171,7 @@ fn normal_dot_light<T: Lane>(g: T, sigma2: T, nv: T, ld: T) -> T {
 fn lobe_cosine<T: Lane>(nl: T, nv: T, ld: T, blinn: T::Mask) -> T {
     let two = T::splat(2.0);
     let phong = two * nl * nv + ld;
-    if T::any(blinn) {
+    if BLINN_PHONG && T::any(blinn) {
         let half2 = two - two * ld;
         let h = (nl + nv) / half2.max(T::splat(f32::MIN_POSITIVE)).sqrt();
         T::select(blinn, h, phong)

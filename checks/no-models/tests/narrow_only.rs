@@ -89,11 +89,7 @@ fn a_point_light_is_refused_at_its_type() {
 
 #[test]
 fn a_normalized_or_lambert_sphere_is_refused_at_its_model() {
-    let normalized = [
-        Model::Lambert,
-        Model::NormalizedPhong(Specular::default()),
-        Model::NormalizedBlinnPhong(Specular::default()),
-    ];
+    let normalized = [Model::Lambert, Model::NormalizedPhong(Specular::default())];
     for model in normalized {
         let s = scene(40.0, |s| {
             s.add_sphere(sphere(0.0, model)).unwrap();

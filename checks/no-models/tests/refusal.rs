@@ -1,13 +1,14 @@
-//! shadeline built without the feature `models`: the `Model` variants still exist, but a scene
-//! refuses a sphere that uses one, with [`Problem::ModelNotBuilt`] on that sphere's `model`,
-//! never a panic and never another model in its place; and the frames of the other models are
-//! the same bits as with the feature (the firmware's CRCs). Each test fails if the refusal
-//! does not fire, as it would in a build with `models` on.
+//! shadeline built without the features `models` and `blinn-phong`: the `Model` variants
+//! still exist, but a scene refuses a sphere that uses one of their models, with
+//! [`Problem::ModelNotBuilt`] on that sphere's `model`, never a panic and never another model
+//! in its place; and the frames of the other models are the same bits as with the features
+//! (the firmware's CRCs). Each test fails if the refusal does not fire, as it would in a build
+//! with the feature on.
 
 use shadeline::{
-    exponent_series, full_moon, materials, microfacets, Camera, Item, LinearRgb, Material, Metal,
-    Microfacet, Model, Prepared, PreparedFixed, Problem, Render, Rgb565, Scalar, Scene, SceneError,
-    Simd8, Sphere, Surface, Vec3,
+    area_lights, exponent_series, full_moon, materials, microfacets, Camera, Item, LinearRgb,
+    Material, Metal, Microfacet, Model, Prepared, PreparedFixed, Problem, Render, Rgb565, Scalar,
+    Scene, SceneError, Simd8, Specular, Sphere, Surface, Vec3,
 };
 
 // The firmware's frame and CRCs; the counts and the microfacet gallery's are not used here.
@@ -68,12 +69,28 @@ fn oren_nayar_and_ggx_spheres_are_refused_by_index() {
 }
 
 #[test]
+fn blinn_phong_spheres_are_refused_by_index() {
+    let mut s = scene();
+    assert_eq!(s.add_sphere(sphere(-2.0, Model::Phong)), Ok(0));
+    assert_eq!(
+        s.add_sphere(sphere(0.0, Model::BlinnPhong)),
+        Err(refused(1))
+    );
+    let normalized = Model::NormalizedBlinnPhong(Specular::default());
+    assert_eq!(s.add_sphere(sphere(0.0, normalized)), Err(refused(1)));
+    assert_eq!(s.spheres().len(), 1);
+    // Normalized Phong, the same lobes about `R` instead of `H`, is in every build.
+    let phong = Model::NormalizedPhong(Specular::default());
+    assert_eq!(s.add_sphere(sphere(2.0, phong)), Ok(1));
+}
+
+#[test]
 fn the_error_names_the_sphere_the_field_and_the_feature() {
     let text = refused(3).to_string();
     assert_eq!(
         text,
-        "sphere 3: `model` is oren-nayar or ggx, which this build of shadeline leaves out \
-         (feature `models`)"
+        "sphere 3: `model` is a model this build of shadeline leaves out (feature `models` for \
+         oren-nayar and ggx, `blinn-phong` for the blinn-phong models)"
     );
 }
 
@@ -81,9 +98,12 @@ fn the_error_names_the_sphere_the_field_and_the_feature() {
 fn presets_of_the_models_return_the_refusal() {
     assert_eq!(microfacets().map(|_| ()), Err(refused(0)));
     assert_eq!(full_moon().map(|_| ()), Err(refused(1)));
-    // The other presets hold no such model.
+    // Gold, the second sphere, is the first of normalized Blinn-Phong; the area-lights
+    // preset's ground is Lambert, its spheres normalized Blinn-Phong.
+    assert_eq!(materials().map(|_| ()), Err(refused(1)));
+    assert_eq!(area_lights(0.0).map(|_| ()), Err(refused(1)));
+    // The exponent series holds no such model.
     assert!(exponent_series().is_ok());
-    assert!(materials().is_ok());
 }
 
 /// CRC32/IEEE over the pixels as little-endian `u16` bytes, row-major: the firmware's rule.
