@@ -444,11 +444,12 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
     high + low
 }
 
-/// [`narrow_b`] (the exact `a·b` of two `i32` vectors) for the run set-up's dot products:
-/// one routine on ARMv6-M rather than three products and their sums at each (336 bytes).
+/// [`narrow_b`] (the exact `a·b` of two `i32` vectors, `|a·b| < 2⁶³`) for the run set-up's
+/// and the prepare's dot products: one routine on ARMv6-M rather than three products and
+/// their sums at each (336 bytes in the run set-up alone).
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
-fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
+pub(super) fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
     narrow_b(a, b)
 }
 
@@ -670,7 +671,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 sigma2,
             };
             let t = self.narrow_t(&surface, run.d);
-            if best.map_or(true, |(nearest, _)| t < nearest) {
+            if best.is_none_or(|(nearest, _)| t < nearest) {
                 best = Some((t, surface));
             }
         }

@@ -16,6 +16,7 @@
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
 use super::mul::{mul_128, mul_128_u, mul_ii, mul_u128, mul_uu};
+use super::narrow::dot_i32;
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_rows;
 use super::quadric::Quadric;
@@ -69,6 +70,11 @@ pub(crate) struct NarrowView {
 }
 
 impl NarrowView {
+    /// The quadrics' three directions `[forward, step_x, step_y]` (see [`quadric`]).
+    fn dirs(&self) -> [V3<i32>; 3] {
+        [self.forward, self.step_x, self.step_y]
+    }
+
     /// The direction `D = forward + dy·step_y + dx·step_x` at the half-pixel offsets
     /// `(dx, dy)` from the centre of the screen. Out of line on ARMv6-M, for its flash, like
     /// the other prepare helpers there: it runs a few times a frame.
@@ -104,23 +110,6 @@ fn to_q29(v: V3<I16F48>) -> [i64; 3] {
     v.map(|c| ((c.to_bits() >> 18) + 1) >> 1)
 }
 
-/// `a·b` of two integer vectors whose products fit `i64` each, exact.
-#[inline(never)]
-fn dot_128(a: V3<i64>, b: V3<i64>) -> i128 {
-    mul_128(a[0], b[0]) + mul_128(a[1], b[1]) + mul_128(a[2], b[2])
-}
-
-/// `a × b` of two vectors of `i32` values, exact.
-#[inline(never)]
-fn cross_64(a: V3<i64>, b: V3<i64>) -> V3<i64> {
-    let m = |x: i64, y: i64| mul_ii(x as i32, y as i32);
-    [
-        m(a[1], b[2]) - m(a[2], b[1]),
-        m(a[2], b[0]) - m(a[0], b[2]),
-        m(a[0], b[1]) - m(a[1], b[0]),
-    ]
-}
-
 /// An `h` (Q31) from which a lobe of exponent `n` times `ks_intensity` (`ks` times the sum
 /// of the lights' brightest channels) is below `τ = 2⁻¹⁷`, half a U16F16 step, allowing for
 /// the fast `h`'s error ([`H_ERROR`]).
@@ -153,44 +142,52 @@ fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
 /// `c₀₀` from the directions `(0, 0)`, `c₁₀` from `(0, 1)` …, `c₀₂` from `(2, 2)`.
 const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
 
-/// Which of a sphere's two quadrics [`quadric`] makes (see [`Quadric`]), with what it needs
-/// beyond the cross products `w` of `oc` with the three directions.
+/// Which of a sphere's two quadrics [`quadric`] makes (see [`Quadric`]). By the identities
+/// of Lagrange and Binet–Cauchy, `|oc × D|² = |oc|²·|D|² − (oc·D)²` and
+/// `(oc × D)·(L × D) = (oc·L)·|D|² − (oc·D)(L·D)`, so both come from dot products alone:
 enum Form<'a> {
-    /// `E′`, from `r²` and the directions: `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|²`.
-    E(i64, &'a [V3<i64>; 3]),
-    /// `G`, from the cross products `v` of `L` with the directions:
-    /// `G·r·2⁸⁸ = (oc × D)·(L × D)`.
-    G(&'a [V3<i64>; 3]),
+    /// `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|² = (r² − |oc|²)·|D|² + (oc·D)²`.
+    E,
+    /// `G·r·2⁸⁸ = (oc × D)·(L × D) = (oc·L)·|D|² − (oc·D)(L·D)`, with `L·Dₐ` for each of
+    /// the three directions.
+    G(&'a [i64; 3]),
 }
 
-/// A sphere's quadric `form` over `den`, from the cross products `w` of `oc` with the three
-/// directions of `D = dc + x·sx + y·sy`. Each raw coefficient is exact in `i128`: for `G`
-/// the symmetric product `wₐ·v_b + w_b·vₐ` (`wₐ·vₐ` on the diagonal), for `E′`
-/// `r²·(Dₐ·D_b) − wₐ·w_b`, doubled off the diagonal. Each is divided as soon as it is made
-/// (one `i128` at a time on the stack), into `c`. One loop over [`PAIRS`] for both, for the
-/// flash: once per sphere and per sphere and light. `None` if a coefficient does not fit.
+/// A sphere's quadric `form` over `den`, for `D = dc + x·sx + y·sy`: from `s` (`r² − |oc|²`
+/// for `E′`, `oc·L` for `G`), the Gram matrix `gram` of the three directions (`Dₐ·D_b` in
+/// the order of [`PAIRS`]) and `b`, their dot products with `oc`. Each raw coefficient is
+/// exact in `i128`: `s·(Dₐ·D_b) ± sym(bₐ·v_b)`, doubled off the diagonal, with `v = b` for
+/// `E′` and `v = L·D` for `G` (below `2¹²⁷`: `|s| < 2⁶²`; `|Dₐ·D_b|`, `|bₐ|` and `|L·Dₐ|`
+/// below `3·2⁶⁰`). Each is divided as soon as it is made (one `i128` at a time on the
+/// stack), into `c`. One loop over [`PAIRS`] for both, for the flash: once per sphere and
+/// per sphere and light. `None` if a coefficient does not fit.
 #[inline(never)]
-fn quadric(w: &[V3<i64>; 3], form: Form, den: &Divisor, c: &mut Quadric) -> Option<()> {
+fn quadric(
+    (s, gram, b): (i64, &[i64; 6], &[i64; 3]),
+    form: Form,
+    den: &Divisor,
+    c: &mut Quadric,
+) -> Option<()> {
     let v = match form {
-        Form::E(..) => w,
-        Form::G(v) => v,
+        Form::E => b,
+        Form::G(l) => l,
     };
-    for (slot, &(a, b)) in c.c.iter_mut().zip(&PAIRS) {
-        let (a, b) = (a % 3, b % 3);
-        // The symmetric product; for `E′`, `v` is `w` and its two halves are equal.
-        let mut raw = dot_128(w[a], v[b]);
-        if a != b {
+    for ((slot, &(i, k)), &dot) in c.c.iter_mut().zip(&PAIRS).zip(gram) {
+        let (i, k) = (i % 3, k % 3);
+        // The symmetric product; for `E′`, `v` is `b` and its two halves are equal.
+        let mut raw = mul_128(b[i], v[k]);
+        if i != k {
             raw += match form {
-                Form::E(..) => raw,
-                Form::G(_) => dot_128(w[b], v[a]),
+                Form::E => raw,
+                Form::G(_) => mul_128(b[k], v[i]),
             };
         }
-        if let Form::E(r2, dirs) = form {
-            // |Dₐ·D_b| < 3·2⁶⁰ (|D| < 2³⁰): doubled, it fits `i64`.
-            let dot = each3(|k| mul_ii(dirs[a][k] as i32, dirs[b][k] as i32));
-            let dot = dot[0] + dot[1] + dot[2];
-            raw = mul_128(r2, if a == b { dot } else { 2 * dot }) - raw;
-        }
+        // |Dₐ·D_b| < 3·2⁶⁰: doubled, it fits `i64`.
+        let scaled = mul_128(s, if i == k { dot } else { 2 * dot });
+        raw = match form {
+            Form::E => scaled + raw,
+            Form::G(_) => scaled - raw,
+        };
         *slot = den.divide(raw)?;
     }
     Some(())
@@ -957,10 +954,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 _ => 0.0,
             })
             .sum();
+        // The Gram matrix of the quadrics' three directions, in the order of `PAIRS`: the
+        // same for every sphere.
+        let dirs = view.dirs();
+        let gram = PAIRS.map(|(a, b)| dot_i32(dirs[a % 3], dirs[b % 3]));
         self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
             let n = scene.spheres().get(i).map_or(1.0, |m| m.material.shininess);
-            self.prepare_narrow_sphere(i, &view, (n, intensity))
+            self.prepare_narrow_sphere(i, (&view, &gram), (n, intensity))
                 .map_err(|field| (Item::Sphere(i), field))?;
         }
         self.narrow = Some(view);
@@ -975,7 +976,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     fn prepare_narrow_sphere(
         &mut self,
         i: usize,
-        view: &NarrowView,
+        (view, gram): (&NarrowView, &[i64; 6]),
         (n, intensity): (f32, f32),
     ) -> Result<(), &'static str> {
         let Some(s) = self.spheres.get(i) else {
@@ -983,7 +984,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let (eye_offset, ks) = (s.eye_offset, s.ks);
         let eps = self.epsilon.to_bits() as i64;
-        let (sx, sy) = (view.step_x.map(|c| c as i64), view.step_y.map(|c| c as i64));
         let oc = eye_offset.map(|c| c.to_bits() as i64);
         let r = s.radius.to_bits() as i64;
         // |oc|² < 3·2⁶⁰: the scene lies within 2¹³ units.
@@ -991,8 +991,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
             return Err("center");
         }
-        // The quadrics' expansion point: the centre of the screen, `dx = dy = 0`.
-        let dc = view.forward.map(|c| c as i64);
         // ⌈log₂ max(1, |ô|²)⌉: below 28, since the scene lies within 2¹³ units and r ≥ 1
         // unit.
         let r2 = mul_ii(r as i32, r as i32);
@@ -1007,13 +1005,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         ) else {
             return Err("radius");
         };
-        // E′·r²·2⁵⁸ = r²·|D|² − |oc × D|² and G·r·2⁸⁸ = (oc × D)·(L × D), with
-        // D = dc + x·sx + y·sy: products of the three directions' Gram matrix and of their
-        // cross products with oc and L.
-        let dirs = [dc, sx, sy];
-        let w = [cross_64(oc, dc), cross_64(oc, sx), cross_64(oc, sy)];
+        // The quadrics over D = dc + x·sx + y·sy, expanded at the centre of the screen
+        // (`dx = dy = 0`), from b = oc·D in each direction (see `Form`).
+        let oc32 = eye_offset.map(|c| c.to_bits());
+        let b = view.dirs().map(|d| dot_i32(oc32, d));
         let mut e = Quadric::default();
-        if quadric(&w, Form::E(r2, &dirs), &e_den, &mut e).is_none() {
+        if quadric((r2 - oc_len2, gram, &b), Form::E, &e_den, &mut e).is_none() {
             return Err("radius");
         }
         if self
@@ -1024,7 +1021,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err("radius");
         }
         for light_index in 0..self.lights.len().min(L) {
-            let light = self.narrow_light(i, light_index, (&w, &dirs), &g_den)?;
+            let light = self.narrow_light(i, light_index, (view, gram, &b), &g_den)?;
             match self
                 .narrow_lights
                 .get_mut(i)
@@ -1049,7 +1046,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         } else {
             ((budget / (2.0 * n * H_ERROR)) * 65536.0) as u32
         };
-        let step2 = sx.map(|c| 2 * c);
         let narrow = NarrowSphere {
             fast_lobe_max,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
@@ -1059,7 +1055,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             g_shift,
             cross_shift: bits + 14,
             gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
-            b_rises: oc.iter().zip(&step2).map(|(&o, &t)| o * t).sum::<i64>() > 0,
+            b_rises: b[1] > 0,
             #[cfg(not(feature = "full-width"))]
             rows: outline_rows(&e, self.height),
             e,
@@ -1071,8 +1067,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         Ok(())
     }
 
-    /// Sphere `i`'s narrow constants for light `light`, from the cross products `w` of its
-    /// eye offset with the quadrics' three directions `dirs` (see [`quadric`]); the field
+    /// Sphere `i`'s narrow constants for light `light`, from the frame's narrow view, the
+    /// Gram matrix of its three directions and their dot products `b` with the sphere's eye
+    /// offset (see [`quadric`]); the field
     /// that keeps the sphere from the narrow kernel if the light is not distant, `G` does not
     /// fit (`radius`) or a caster is too close (`center`, see [`Self::narrow_casters`]). Out
     /// of line, like the sphere's.
@@ -1081,25 +1078,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         &self,
         i: usize,
         light: usize,
-        (w, dirs): (&[V3<i64>; 3], &[V3<i64>; 3]),
+        (view, gram, b): (&NarrowView, &[i64; 6], &[i64; 3]),
         g_den: &Divisor,
     ) -> Result<NarrowLight, &'static str> {
         let Some(FixedLight::Distant { to_light, arriving }) = self.lights.get(light) else {
             return Err("radius");
         };
-        let l = to_light.map(|c| c.to_bits() as i64);
+        let Some(own) = self.spheres.get(i) else {
+            return Err("center");
+        };
+        let l = to_light.map(|c| c.to_bits());
+        let oc_l = dot_i32(own.eye_offset.map(|c| c.to_bits()), l);
         let mut g = Quadric::default();
-        quadric(
-            w,
-            Form::G(&[
-                cross_64(l, dirs[0]),
-                cross_64(l, dirs[1]),
-                cross_64(l, dirs[2]),
-            ]),
-            g_den,
-            &mut g,
-        )
-        .ok_or("radius")?;
+        let ld = view.dirs().map(|d| dot_i32(l, d));
+        quadric((oc_l, gram, b), Form::G(&ld), g_den, &mut g).ok_or("radius")?;
         let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
         Ok(NarrowLight {
             g,
@@ -1355,6 +1347,89 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// `quadric` against the quadrics' definitions in `i128`, from cross products: `E′`'s
+    /// raw coefficients `r²·(Dₐ·D_b) − (oc × Dₐ)·(oc × D_b)`, `G`'s `(oc × Dₐ)·(L × D_b)`,
+    /// symmetrized and doubled off the diagonal, each through the same divisor. Random
+    /// offsets, radii, lights and directions at the bounds the prepare holds them to
+    /// (components below `2³⁰`, `|oc|² < 3·2⁶⁰`), and their extremes.
+    #[test]
+    fn quadrics_are_their_cross_product_definitions() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |bits: u32| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Signed, below 2^bits in magnitude, often at the extremes.
+            let v = (x >> (64 - bits)) as i64;
+            let v = match x % 8 {
+                0 => (1 << (bits - 1)) - 1,
+                1 => 1 - (1 << (bits - 1)),
+                _ => v - (1 << (bits - 1)),
+            };
+            v as i32
+        };
+        let cross = |a: [i32; 3], b: [i32; 3]| {
+            let m = |i: usize, j: usize| a[i] as i128 * b[j] as i128;
+            [m(1, 2) - m(2, 1), m(2, 0) - m(0, 2), m(0, 1) - m(1, 0)]
+        };
+        let dot = |a: [i128; 3], b: [i128; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let wide = |a: [i32; 3]| a.map(|c| c as i128);
+        let mut checked = 0;
+        for _ in 0..3000 {
+            let oc = [next(31), next(31), next(31)];
+            let r = (next(31) as i64).unsigned_abs().max(1 << 16) as i64;
+            let dirs = [
+                [next(31), next(31), next(31)],
+                [next(29), next(29), next(29)],
+                [next(29), next(29), next(29)],
+            ];
+            let l = [next(31), next(31), next(31)];
+            let oc_len2 = dot(wide(oc), wide(oc));
+            if oc_len2 >= 3 << 60 {
+                continue;
+            }
+            let r2 = r * r;
+            let gram = PAIRS.map(|(a, b)| dot_i32(dirs[a], dirs[b]));
+            let b = dirs.map(|d| dot_i32(oc, d));
+            let ld = dirs.map(|d| dot_i32(l, d));
+            let oc_l = dot_i32(oc, l);
+            let w = dirs.map(|d| cross(oc, d));
+            let v = dirs.map(|d| cross(l, d));
+            // A divisor that keeps the quotients within `i64`: 2¹²⁷ over it is below 2⁶².
+            let den = Divisor::new(r as u64, 66).expect("not zero");
+            let mut e = Quadric::default();
+            let mut g = Quadric::default();
+            let e_ok = quadric((r2 - oc_len2 as i64, &gram, &b), Form::E, &den, &mut e);
+            let g_ok = quadric((oc_l, &gram, &b), Form::G(&ld), &den, &mut g);
+            assert!(
+                e_ok.is_some() && g_ok.is_some(),
+                "{oc:?} {r} {dirs:?} {l:?}"
+            );
+            for (k, &(a, c)) in PAIRS.iter().enumerate() {
+                let twice = if a == c { 1 } else { 2 };
+                let gram = dot(wide(dirs[a]), wide(dirs[c]));
+                let e_raw = twice * (r2 as i128 * gram - dot(w[a], w[c]));
+                let g_raw = if a == c {
+                    dot(w[a], v[a])
+                } else {
+                    dot(w[a], v[c]) + dot(w[c], v[a])
+                };
+                assert_eq!(
+                    Some(e.c[k]),
+                    den.divide(e_raw),
+                    "E′ c{k} of {oc:?} {r} {dirs:?}"
+                );
+                assert_eq!(
+                    Some(g.c[k]),
+                    den.divide(g_raw),
+                    "G c{k} of {oc:?} {l:?} {dirs:?}"
+                );
+            }
+            checked += 1;
+        }
+        assert!(checked > 1000, "{checked} cases");
     }
 
     /// `narrow_casters` against the same geometry in `f64`, from the prepared integers, over
