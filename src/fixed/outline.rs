@@ -8,7 +8,8 @@
 //! ([`Quadric`]). Where the sphere's outline on the screen is an ellipse (the sphere is in
 //! front of the camera and does not reach its side), `E′` is concave along every row and the
 //! rows that reach `E′ ≥ 0` are one interval: the prepare finds that interval once
-//! ([`outline_rows`], a few dozen exact `i128` evaluations per sphere), and each row in it
+//! ([`outline_rows`]: three exact `i128` evaluations per sphere and a walk down the rows by
+//! forward differences, two `i128` additions a row), and each row in it
 //! its columns ([`outline_on_row`]: a binary search for the row's largest value, then the
 //! quadric's forward differences out to the span's ends). A row
 //! outside the interval costs one comparison. Elsewhere (a hyperbola or parabola on the
@@ -54,12 +55,6 @@ fn row_reach(e: &Quadric, y: u32, height: u32) -> i128 {
     mul_128(e1, e1) - mul_128(4 * e2, e0)
 }
 
-/// Whether [`row_reach`] is larger on row `y + 1` than on row `y`.
-#[inline(never)]
-fn reach_rises(e: &Quadric, y: u32, height: u32) -> bool {
-    row_reach(e, y + 1, height) > row_reach(e, y, height)
-}
-
 /// The rows `[start, end)` of a frame `height` rows high on which the sphere whose narrow
 /// quadric is `e` can be hit, found once per frame; the whole frame where `E′` is not an
 /// ellipse on the screen (the sphere reaches the side of the camera) or `c₂₀` is too large
@@ -69,9 +64,12 @@ fn reach_rises(e: &Quadric, y: u32, height: u32) -> bool {
 /// largest value over real `dx` is `e₀ − e₁²/4e₂`, which is at least 0 iff
 /// `R(dy) = e₁² − 4e₂e₀ ≥ 0` ([`row_reach`]). `R` is a quadratic in `dy` with leading
 /// coefficient `c₁₁² − 4c₂₀c₀₂`; where that is negative, `R` is concave along the rows, so
-/// its rows at or above 0 are one interval: a binary search on the sign of `R`'s difference
-/// finds the row where `R` is largest, two more find the interval's ends. Every value is
-/// exact, so no row with a hit is left out.
+/// its rows at or above 0 are one interval, which a walk down the rows finds: `R` by its
+/// forward differences from its first three rows, two `i128` additions a row. They wrap,
+/// but every row's `R` in the frame fits `i128`, so each is exact (the differences are
+/// exact modulo `2¹²⁸`; in a frame of fewer than three rows the rows beyond it feed only
+/// values that are never read). So no row with a hit is left out, and the walk stops at
+/// the interval's end.
 pub(crate) fn outline_rows(e: &Quadric, height: u32) -> (u32, u32) {
     let [_, _, _, c20, c11, c02] = e.c;
     // c₁₁² and 4c₂₀c₀₂ are below 2¹²⁶: compared, not subtracted.
@@ -81,12 +79,21 @@ pub(crate) fn outline_rows(e: &Quadric, height: u32) -> (u32, u32) {
     {
         return (0, height);
     }
-    let top = first(0, height.saturating_sub(1), |y| !reach_rises(e, y, height));
-    let reaches = |y| row_reach(e, y, height) >= 0;
-    if !reaches(top) {
-        return (0, 0);
+    let [r0, r1, r2] = [0, 1, 2].map(|y| row_reach(e, y, height));
+    let mut reach = r0;
+    let mut step = r1.wrapping_sub(r0);
+    let bend = r2.wrapping_sub(r1).wrapping_sub(step);
+    let mut start = None;
+    for y in 0..height {
+        match (start, reach >= 0) {
+            (None, true) => start = Some(y),
+            (Some(first), false) => return (first, y),
+            _ => {}
+        }
+        reach = reach.wrapping_add(step);
+        step = step.wrapping_add(bend);
     }
-    (first(0, top, reaches), first(top, height, |y| !reaches(y)))
+    start.map_or((0, 0), |first| (first, height))
 }
 
 /// The columns of the row at offset `dy` (frame `width` columns wide) where `E′ ≥ 0`: the

@@ -129,6 +129,46 @@ fn random_scenes_near_the_edges_and_the_camera() {
     );
 }
 
+/// Frames two and three rows high, where the rows of a sphere's outline come from its first
+/// rows alone (the walk down the rows reads no row below the frame): one sphere, its
+/// silhouette crossing the frame, at several places and sizes.
+#[test]
+fn frames_of_two_and_three_rows() {
+    let mut random = Random(0x9e37_79b9_7f4a_7c15);
+    let mut rendered = 0;
+    for i in 0..60 {
+        let mut scene: Scene<1, 1> = Scene::new(
+            Camera {
+                position: Vec3::new(0.0, 0.0, 8.0),
+                look_at: Vec3::new(0.0, 0.0, 0.0),
+                up: Vec3::new(0.0, 1.0, 0.0),
+                vfov_degrees: 20.0,
+            },
+            LinearRgb::new(0.1, 0.1, 0.2),
+        )
+        .expect("valid camera");
+        // The frame's half-height at z = 0 is 8·tan 10° ≈ 1.4 units.
+        let sphere = Sphere {
+            center: Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0),
+            radius: random.range(0.8, 1.6),
+            material: Material::default(),
+        };
+        scene.add_sphere(sphere).expect("a valid sphere");
+        scene
+            .add_light(Light::Distant {
+                direction: Vec3::new(0.3, -0.4, -1.0),
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: 1.0,
+            })
+            .expect("a valid light");
+        let size = [(3, 2), (2, 2), (4, 3), (3, 3)][i % 4];
+        if spans_change_nothing(&scene, size, &format!("sphere {i}")) {
+            rendered += 1;
+        }
+    }
+    assert!(rendered >= 40, "only {rendered} of 60 frames rendered");
+}
+
 /// The spans are exact, not merely conservative: with one sphere in front of the camera
 /// (its outline an ellipse on the screen), each row's span holds exactly the pixels whose
 /// hit record is the sphere's, and a row the sphere does not reach has no span. Spheres of
