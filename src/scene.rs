@@ -763,12 +763,15 @@ impl Material {
         c.non_negative("kd", &[self.kd], MAX_VALUE)?;
         c.non_negative("ks", &[self.ks], MAX_VALUE)?;
         c.positive("shininess", self.shininess, MAX_SHININESS)?;
-        // Refused before the model's own numbers are read.
-        #[cfg(not(feature = "blinn-phong"))]
-        if matches!(
-            self.model,
-            Model::BlinnPhong | Model::NormalizedBlinnPhong(_)
-        ) {
+        // A model the build leaves out, refused before its own numbers are read.
+        let left_out = (!cfg!(feature = "blinn-phong")
+            && matches!(
+                self.model,
+                Model::BlinnPhong | Model::NormalizedBlinnPhong(_)
+            ))
+            || (!cfg!(feature = "models")
+                && matches!(self.model, Model::OrenNayar { .. } | Model::Ggx(_)));
+        if left_out {
             return Err(c.err("model", Problem::ModelNotBuilt));
         }
         if let Some(spec) = self.model.specular() {
@@ -778,10 +781,6 @@ impl Material {
             }
         }
         match self.model {
-            #[cfg(not(feature = "models"))]
-            Model::OrenNayar { .. } | Model::Ggx(_) => {
-                return Err(c.err("model", Problem::ModelNotBuilt));
-            }
             #[cfg(feature = "models")]
             Model::OrenNayar { roughness } => {
                 c.non_negative("roughness", &[roughness], MAX_OREN_NAYAR_ROUGHNESS)?;
