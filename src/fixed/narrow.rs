@@ -87,7 +87,7 @@
 //! normal for caster tests and the per-channel scaling by the light's colour.
 
 use super::exact::{shift_saturating, Exact};
-use super::mul::{mul_ii, mul_iu, mul_uu};
+use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
 use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
 use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed};
 use super::quadric::Step;
@@ -444,15 +444,6 @@ fn scale_signed_q16(v: i32, s: u32) -> i32 {
     high + low
 }
 
-/// [`narrow_b`] (the exact `a·b` of two `i32` vectors, `|a·b| < 2⁶³`) for the run set-up's
-/// and the prepare's dot products: one routine on ARMv6-M rather than three products and
-/// their sums at each (336 bytes in the run set-up alone).
-#[cfg_attr(not(shadeline_short_mul), inline(always))]
-#[cfg_attr(shadeline_short_mul, inline(never))]
-pub(super) fn dot_i32(a: V3<i32>, b: V3<i32>) -> i64 {
-    narrow_b(a, b)
-}
-
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The narrow direction of pixel `x` on row `y`. One routine on ARMv6-M, for its flash:
     /// the run set-up computes it at up to four columns.
@@ -495,7 +486,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             let oc = s.eye_offset.map(|c| c.to_bits());
             let b_at = |column| {
-                dot_i32(
+                dot_ii(
                     oc,
                     Self::narrow_direction(view, column, y, self.width, self.height),
                 )
@@ -524,10 +515,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let d = Self::narrow_direction(view, x, y, self.width, self.height);
         let step = view.step_x.map(|c| 2 * c);
         // |D + k·S|² = |D|² + k·2D·S + k²|S|²: the step from k to k + 1 is 2D·S + (2k + 1)|S|².
-        let ss = dot_i32(step, step);
+        let ss = dot_ii(step, step);
         run.a = Step {
-            v: dot_i32(d, d),
-            d: 2 * dot_i32(d, step) + ss,
+            v: dot_ii(d, d),
+            d: 2 * dot_ii(d, step) + ss,
             dd: 2 * ss,
         };
         for (dl, light) in run.dl.iter_mut().zip(&self.lights) {
@@ -536,8 +527,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             };
             let l = to_light.map(|c| c.to_bits());
             *dl = Step {
-                v: dot_i32(d, l),
-                d: dot_i32(step, l),
+                v: dot_ii(d, l),
+                d: dot_ii(step, l),
                 dd: 0,
             };
         }
@@ -850,7 +841,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     fn narrow_t(&self, hit: &Surface, d: V3<i32>) -> i64 {
         let sphere = self.spheres.get(hit.index);
         let radius = sphere.map_or(0, |s| s.radius.to_bits() as u32);
-        let b = sphere.map_or(0, |s| dot_i32(s.eye_offset.map(|c| c.to_bits()), d));
+        let b = sphere.map_or(0, |s| dot_ii(s.eye_offset.map(|c| c.to_bits()), d));
         // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
         let along = (mul_uu(((-b) >> 30) as u32, hit.sigma as u32) >> 14) as i64;
         along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
@@ -1013,12 +1004,6 @@ fn scale_q15(a: u32, b: i32) -> u32 {
     {
         u32::try_from(mul_uu(a, b) >> 15).unwrap_or(u32::MAX)
     }
-}
-
-/// `b = oc·D` of the raw eye offset `oc` and a narrow direction `D`, exact.
-#[inline(always)]
-fn narrow_b(oc: V3<i32>, d: V3<i32>) -> i64 {
-    mul_ii(oc[0], d[0]) + mul_ii(oc[1], d[1]) + mul_ii(oc[2], d[2])
 }
 
 /// The columns of `[start, end)` where `b_at(column)` is negative, `None` if there are none.

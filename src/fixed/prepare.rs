@@ -15,8 +15,7 @@
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
-use super::mul::{mul_128, mul_128_u, mul_ii, mul_u128, mul_uu};
-use super::narrow::dot_i32;
+use super::mul::{dot_ii, mul_128, mul_128_u, mul_ii, mul_u128, mul_uu};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_rows;
 use super::quadric::Quadric;
@@ -957,7 +956,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // The Gram matrix of the quadrics' three directions, in the order of `PAIRS`: the
         // same for every sphere.
         let dirs = view.dirs();
-        let gram = PAIRS.map(|(a, b)| dot_i32(dirs[a % 3], dirs[b % 3]));
+        let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a % 3], dirs[b % 3]));
         self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
             let n = scene.spheres().get(i).map_or(1.0, |m| m.material.shininess);
@@ -1008,7 +1007,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // The quadrics over D = dc + x·sx + y·sy, expanded at the centre of the screen
         // (`dx = dy = 0`), from b = oc·D in each direction (see `Form`).
         let oc32 = eye_offset.map(|c| c.to_bits());
-        let b = view.dirs().map(|d| dot_i32(oc32, d));
+        let b = view.dirs().map(|d| dot_ii(oc32, d));
         let mut e = Quadric::default();
         if quadric((r2 - oc_len2, gram, &b), Form::E, &e_den, &mut e).is_none() {
             return Err("radius");
@@ -1088,9 +1087,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err("center");
         };
         let l = to_light.map(|c| c.to_bits());
-        let oc_l = dot_i32(own.eye_offset.map(|c| c.to_bits()), l);
+        let oc_l = dot_ii(own.eye_offset.map(|c| c.to_bits()), l);
         let mut g = Quadric::default();
-        let ld = view.dirs().map(|d| dot_i32(l, d));
+        let ld = view.dirs().map(|d| dot_ii(l, d));
         quadric((oc_l, gram, b), Form::G(&ld), g_den, &mut g).ok_or("radius")?;
         let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
         Ok(NarrowLight {
@@ -1391,10 +1390,10 @@ mod tests {
                 continue;
             }
             let r2 = r * r;
-            let gram = PAIRS.map(|(a, b)| dot_i32(dirs[a], dirs[b]));
-            let b = dirs.map(|d| dot_i32(oc, d));
-            let ld = dirs.map(|d| dot_i32(l, d));
-            let oc_l = dot_i32(oc, l);
+            let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a], dirs[b]));
+            let b = dirs.map(|d| dot_ii(oc, d));
+            let ld = dirs.map(|d| dot_ii(l, d));
+            let oc_l = dot_ii(oc, l);
             let w = dirs.map(|d| cross(oc, d));
             let v = dirs.map(|d| cross(l, d));
             // A divisor that keeps the quotients within `i64`: 2¹²⁷ over it is below 2⁶².
