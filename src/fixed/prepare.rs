@@ -1068,10 +1068,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// Sphere `i`'s narrow constants for light `light`, from the frame's narrow view, the
     /// Gram matrix of its three directions and their dot products `b` with the sphere's eye
-    /// offset (see [`quadric`]); the field
-    /// that keeps the sphere from the narrow kernel if the light is not distant, `G` does not
-    /// fit (`radius`) or a caster is too close (`center`, see [`Self::narrow_casters`]). Out
-    /// of line, like the sphere's.
+    /// offset (see [`quadric`]); the field that keeps the sphere from the narrow kernel if
+    /// the light is not distant, `G` does not fit (`radius`) or a caster is too close
+    /// (`center`, see [`Self::narrow_casters`]). Out of line, like the sphere's.
     #[inline(never)]
     fn narrow_light(
         &self,
