@@ -86,6 +86,31 @@ impl Random {
     }
 }
 
+/// `scene` with one white-lit, default-material sphere of `center` and `radius` under a
+/// distant light along `direction`.
+fn one_sphere(
+    mut scene: Scene<1, 1>,
+    (center, radius): (Vec3, f32),
+    direction: Vec3,
+) -> Scene<1, 1> {
+    let material = Material::default();
+    scene
+        .add_sphere(Sphere {
+            center,
+            radius,
+            material,
+        })
+        .expect("a valid sphere");
+    scene
+        .add_light(Light::Distant {
+            direction,
+            color: LinearRgb::new(1.0, 1.0, 1.0),
+            intensity: 1.0,
+        })
+        .expect("a valid light");
+    scene
+}
+
 #[test]
 fn random_scenes_near_the_edges_and_the_camera() {
     let mut random = Random(0x2545_f491_4f6c_dd1d);
@@ -137,30 +162,19 @@ fn frames_of_two_and_three_rows() {
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
     let mut rendered = 0;
     for i in 0..60 {
-        let mut scene: Scene<1, 1> = Scene::new(
-            Camera {
-                position: Vec3::new(0.0, 0.0, 8.0),
-                look_at: Vec3::new(0.0, 0.0, 0.0),
-                up: Vec3::new(0.0, 1.0, 0.0),
-                vfov_degrees: 20.0,
-            },
-            LinearRgb::new(0.1, 0.1, 0.2),
-        )
-        .expect("valid camera");
-        // The frame's half-height at z = 0 is 8·tan 10° ≈ 1.4 units.
-        let sphere = Sphere {
-            center: Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0),
-            radius: random.range(0.8, 1.6),
-            material: Material::default(),
+        let camera = Camera {
+            position: Vec3::new(0.0, 0.0, 8.0),
+            look_at: Vec3::new(0.0, 0.0, 0.0),
+            up: Vec3::new(0.0, 1.0, 0.0),
+            vfov_degrees: 20.0,
         };
-        scene.add_sphere(sphere).expect("a valid sphere");
-        scene
-            .add_light(Light::Distant {
-                direction: Vec3::new(0.3, -0.4, -1.0),
-                color: LinearRgb::new(1.0, 1.0, 1.0),
-                intensity: 1.0,
-            })
-            .expect("a valid light");
+        // The frame's half-height at z = 0 is 8·tan 10° ≈ 1.4 units.
+        let center = Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0);
+        let scene = one_sphere(
+            Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.2)).expect("valid camera"),
+            (center, random.range(0.8, 1.6)),
+            Vec3::new(0.3, -0.4, -1.0),
+        );
         let size = [(3, 2), (2, 2), (4, 3), (3, 3)][i % 4];
         if spans_change_nothing(&scene, size, &format!("sphere {i}")) {
             rendered += 1;
@@ -178,22 +192,15 @@ fn spans_are_the_hit_pixels_exactly() {
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
     let mut compared = 0usize;
     for i in 0..40 {
-        let mut scene: Scene<1, 1> = random.scene(60.0);
+        let empty: Scene<1, 1> = random.scene(60.0);
         let z = random.range(-6.0, 4.0);
         let reach = (8.0 - z) * 0.5;
-        let sphere = Sphere {
-            center: Vec3::new(random.range(-reach, reach), random.range(-reach, reach), z),
-            radius: random.range(0.05, 2.5),
-            material: Material::default(),
-        };
-        scene.add_sphere(sphere).expect("a valid sphere");
-        scene
-            .add_light(Light::Distant {
-                direction: Vec3::new(0.3, -1.0, -0.5),
-                color: LinearRgb::new(1.0, 1.0, 1.0),
-                intensity: 1.0,
-            })
-            .expect("a valid light");
+        let center = Vec3::new(random.range(-reach, reach), random.range(-reach, reach), z);
+        let scene = one_sphere(
+            empty,
+            (center, random.range(0.05, 2.5)),
+            Vec3::new(0.3, -1.0, -0.5),
+        );
         let (w, h) = [(64, 48), (97, 31), (40, 90)][i % 3];
         // A wide frame at a wide field of view is the full-width kernel's.
         let Ok(frame) = PreparedFixed::<1, 1>::new(&scene, w, h) else {
