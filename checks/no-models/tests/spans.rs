@@ -160,14 +160,14 @@ fn random_scenes_near_the_edges_and_the_camera() {
 #[test]
 fn frames_of_two_and_three_rows() {
     let mut random = Random(0x9e37_79b9_7f4a_7c15);
+    let camera = Camera {
+        position: Vec3::new(0.0, 0.0, 8.0),
+        look_at: Vec3::new(0.0, 0.0, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 20.0,
+    };
     let mut rendered = 0;
     for i in 0..60 {
-        let camera = Camera {
-            position: Vec3::new(0.0, 0.0, 8.0),
-            look_at: Vec3::new(0.0, 0.0, 0.0),
-            up: Vec3::new(0.0, 1.0, 0.0),
-            vfov_degrees: 20.0,
-        };
         // The frame's half-height at z = 0 is 8·tan 10° ≈ 1.4 units.
         let center = Vec3::new(random.range(-0.5, 0.5), random.range(-0.5, 0.5), 0.0);
         let scene = one_sphere(
