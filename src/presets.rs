@@ -348,9 +348,9 @@ pub const AREA_LIGHT_RADIUS: f32 = 1.5;
 /// lobe narrower than the light, the highlight is the light's reflected image). The same
 /// numbers are in `scenes/area-lights.toml`.
 ///
-/// Without the feature `area-lights` a radius above 0 renders on no fast path (they refuse
-/// it with [`RenderError::SphereLight`](crate::RenderError)), and the fixed path needs
-/// `full-width` too; the `f64` reference renders it.
+/// A radius above 0 needs the feature `area-lights` (without it the scene refuses the light,
+/// [`Problem::SphereLightNotBuilt`](crate::Problem::SphereLightNotBuilt)), and on the fixed
+/// path `full-width` too.
 pub fn area_lights(light_radius: f32) -> Result<Scene<5, 1>, SceneError> {
     let camera = Camera {
         position: Vec3::new(0.0, 2.5, 10.0),

@@ -80,8 +80,9 @@ pub enum RenderError {
         field: &'static str,
     },
     /// A point light has a radius (a sphere light), and this build renders point lights of
-    /// radius 0 only on this path: the float paths without the crate feature `area-lights`,
-    /// the fixed path without `area-lights` and `full-width`. The `f64`
+    /// radius 0 only on this path: the fixed path with the crate feature `area-lights` but
+    /// without `full-width`. (Without `area-lights` a scene holds no sphere light:
+    /// [`Scene::add_light`](crate::Scene::add_light) refuses one.) The `f64`
     /// [`reference`](crate::reference) renders sphere lights.
     SphereLight {
         /// The light's index.

@@ -11,7 +11,9 @@
 //! every build, but the kernels hold them only with the crate features `models` and
 //! `blinn-phong` (both on by default). Without the feature, a sphere of such a material is
 //! refused as it is added, with [`Problem::ModelNotBuilt`] on its `model`: a scene never
-//! holds a model the kernels leave out, and never renders another in its place.
+//! holds a model the kernels leave out, and never renders another in its place. Sphere lights
+//! (point lights with a radius) likewise need the feature `area-lights`: without it
+//! [`Scene::add_light`] refuses one with [`Problem::SphereLightNotBuilt`] on its `radius`.
 //!
 //! # Ranges
 //!
@@ -420,6 +422,8 @@ pub enum Light {
         /// wherever it is wholly above a surface's horizon and unblocked, the surface gets
         /// what the point at its centre would give; its highlights are wider and its shadows
         /// soft. In `[0, MAX_COORDINATE]`, and the sphere may not overlap a scene sphere.
+        /// Above 0 only with the crate feature `area-lights` (on by default): without it
+        /// [`Scene::add_light`] refuses it ([`Problem::SphereLightNotBuilt`]).
         radius: f32,
     },
 }
@@ -478,6 +482,10 @@ pub enum Problem {
     /// the firmware builds turn them off). Reported on the sphere's `model`. Never returned
     /// with both features on.
     ModelNotBuilt,
+    /// A point light has a radius (a sphere light), and this build of the crate leaves
+    /// sphere lights out (feature `area-lights`, on by default; the firmware builds turn it
+    /// off). Reported on the light's `radius`. Never returned with the feature on.
+    SphereLightNotBuilt,
 }
 
 /// Why a scene was refused: the item, the field (named as in the scene file) and the problem.
@@ -542,6 +550,10 @@ impl fmt::Display for Problem {
             Problem::ModelNotBuilt => {
                 "is a model this build of shadeline leaves out (feature `models` for oren-nayar and \
                  ggx, `blinn-phong` for the blinn-phong models)"
+            }
+            Problem::SphereLightNotBuilt => {
+                "makes a sphere light, which this build of shadeline leaves out (feature \
+                 `area-lights`)"
             }
         })
     }
@@ -903,6 +915,11 @@ impl Light {
             } => {
                 c.point("position", position)?;
                 c.non_negative("radius", &[radius], MAX_COORDINATE)?;
+                // Without the feature no kernel holds sphere lights: refused here, so that a
+                // scene never holds one (and needs no overlap test for one).
+                if !cfg!(feature = "area-lights") && radius > 0.0 {
+                    return Err(c.err("radius", Problem::SphereLightNotBuilt));
+                }
                 (color, intensity)
             }
         };
@@ -912,7 +929,9 @@ impl Light {
 }
 
 /// Whether light `index` (a sphere light) lies clear of `sphere`: the two spheres do not
-/// overlap (touching is allowed).
+/// overlap (touching is allowed). Only with `area-lights`: without it a scene holds no
+/// sphere light.
+#[cfg(feature = "area-lights")]
 #[inline(never)]
 fn light_clear_of(index: usize, light: &Light, sphere: &Sphere) -> Result<(), SceneError> {
     let Light::Point {
@@ -995,6 +1014,7 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     pub fn add_sphere(&mut self, sphere: Sphere) -> Result<usize, SceneError> {
         let index = self.spheres.len();
         sphere.check(Item::Sphere(index))?;
+        #[cfg(feature = "area-lights")]
         for (k, light) in self.lights.iter().enumerate() {
             light_clear_of(k, light, &sphere)?;
         }
@@ -1011,6 +1031,7 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     pub fn add_light(&mut self, light: Light) -> Result<usize, SceneError> {
         let index = self.lights.len();
         light.check(Item::Light(index))?;
+        #[cfg(feature = "area-lights")]
         for sphere in &self.spheres {
             light_clear_of(index, &light, sphere)?;
         }

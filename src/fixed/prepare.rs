@@ -659,7 +659,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return Err(RenderError::BadSize { width, height });
         }
-        #[cfg(not(all(feature = "area-lights", feature = "full-width")))]
+        // A scene holds a sphere light only with `area-lights`; the fixed path shades it in
+        // its full-width kernel.
+        #[cfg(all(feature = "area-lights", not(feature = "full-width")))]
         if let Some(light) = scene.sphere_light() {
             return Err(RenderError::SphereLight { light });
         }

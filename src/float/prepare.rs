@@ -278,11 +278,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             return Err(RenderError::BadSize { width, height });
         }
         // Refused up front, with the size: after this nothing fails, and the frame is built
-        // where it is returned. With `area-lights`, sphere lights render.
-        #[cfg(not(feature = "area-lights"))]
-        if let Some(light) = scene.sphere_light() {
-            return Err(RenderError::SphereLight { light });
-        }
+        // where it is returned. (A scene holds a sphere light only with `area-lights`, which
+        // renders it.)
         let camera = scene.camera();
         let (right, up, forward) = scene.camera_basis();
         let tan = camera.tan_half_fov();

@@ -1,14 +1,15 @@
-//! shadeline built without the features `models` and `blinn-phong`: the `Model` variants
-//! still exist, but a scene refuses a sphere that uses one of their models, with
-//! [`Problem::ModelNotBuilt`] on that sphere's `model`, never a panic and never another model
-//! in its place; and the frames of the other models are the same bits as with the features
-//! (the firmware's CRCs). Each test fails if the refusal does not fire, as it would in a build
-//! with the feature on.
+//! shadeline built without the features `models`, `blinn-phong` and `area-lights`: the
+//! `Model` variants still exist, but a scene refuses a sphere that uses one of their models,
+//! with [`Problem::ModelNotBuilt`] on that sphere's `model`, never a panic and never another
+//! model in its place; a sphere light (a point light with a radius) is refused the same way,
+//! with [`Problem::SphereLightNotBuilt`] on the light's `radius`; and the frames of the other
+//! models are the same bits as with the features (the firmware's CRCs). Each test fails if
+//! the refusal does not fire, as it would in a build with the feature on.
 
 use shadeline::{
-    area_lights, exponent_series, full_moon, materials, microfacets, Camera, Item, LinearRgb,
-    Material, Metal, Microfacet, Model, Prepared, PreparedFixed, Problem, Render, Rgb565, Scalar,
-    Scene, SceneError, Simd8, Specular, Sphere, Surface, Vec3,
+    area_lights, exponent_series, full_moon, materials, microfacets, Camera, Item, Light,
+    LinearRgb, Material, Metal, Microfacet, Model, Prepared, PreparedFixed, Problem, Render,
+    Rgb565, Scalar, Scene, SceneError, Simd8, Specular, Sphere, Surface, Vec3,
 };
 
 // The firmware's frame and CRCs; the counts and the microfacet gallery's are not used here.
@@ -82,6 +83,40 @@ fn blinn_phong_spheres_are_refused_by_index() {
     // Normalized Phong, the same lobes about `R` instead of `H`, is in every build.
     let phong = Model::NormalizedPhong(Specular::default());
     assert_eq!(s.add_sphere(sphere(2.0, phong)), Ok(1));
+}
+
+#[test]
+fn sphere_lights_are_refused_as_they_are_added() {
+    let light = |radius: f32| Light::Point {
+        position: Vec3::new(0.0, 4.0, 0.0),
+        color: LinearRgb::new(1.0, 1.0, 1.0),
+        intensity: 100.0,
+        radius,
+    };
+    let mut s = scene();
+    assert_eq!(s.add_sphere(sphere(0.0, Model::Phong)), Ok(0));
+    let refusal = SceneError::Invalid {
+        item: Item::Light(0),
+        field: "radius",
+        problem: Problem::SphereLightNotBuilt,
+    };
+    assert_eq!(s.add_light(light(0.5)), Err(refusal));
+    assert_eq!(
+        refusal.to_string(),
+        "light 0: `radius` makes a sphere light, which this build of shadeline leaves out \
+         (feature `area-lights`)"
+    );
+    // Its range is checked first, as with the feature; a refused light is not added, and a
+    // point light of radius 0 is taken.
+    let not_finite = SceneError::Invalid {
+        item: Item::Light(0),
+        field: "radius",
+        problem: Problem::NotFinite,
+    };
+    assert_eq!(s.add_light(light(f32::NAN)), Err(not_finite));
+    assert!(s.lights().is_empty());
+    assert_eq!(s.add_light(light(0.0)), Ok(0));
+    assert_eq!(s.sphere_light(), None);
 }
 
 #[test]
