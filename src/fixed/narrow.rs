@@ -92,12 +92,20 @@ use super::pow::{lobe, EXP_TABLE, INV_LN2_F31, LOG_TABLE};
 use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed};
 use super::quadric::Step;
 use super::roots::{inv_sqrt, sqrt};
-use super::vector::{dot_len_unit, each3, length_sq, to_len, V3};
+use super::vector::{each3, V3};
 use crate::pixel::HitRecord;
 use crate::runs::Span;
 
 /// One, Q15.
 const ONE: i32 = 1 << 15;
+
+/// Bound of each component of the narrow normal (Q15) in the caster test (`narrow_blocked`),
+/// `2⁻⁸` above 1. The normal is within about `2⁻¹²` of unit length on a hit, so the clamp
+/// never moves a real one; it bounds the test's arithmetic whatever the normal. After the
+/// prepare's scaling every point of every sphere lies within `2²⁹` raw per component, so a
+/// surface point lifted by `ε` (below `2¹⁶` raw) along a normal so bounded lies within
+/// `2²⁹ + 2²²`, and its offset from another sphere's centre within `2³⁰ + 2²²`.
+const NORMAL_LIMIT: i32 = ONE + (ONE >> 8);
 
 /// What a kernel (the narrow one, or the full-width one) found for one pixel: linear colour
 /// in U16F16 (saturated) and the hit record (shadowed bits only when asked for).
@@ -809,7 +817,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return false;
         };
         let to_light = *to_light;
-        let mut origin: Option<V3<i64>> = None;
+        let mut origin: Option<V3<i32>> = None;
         for (k, s) in self.spheres.iter().enumerate() {
             if k == index || (k < 32 && casters & (1 << k) == 0) {
                 continue;
@@ -817,15 +825,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let origin = *origin.get_or_insert_with(|| {
                 let lift = (own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64)
                     .min(i32::MAX as i64);
-                each3(|i| own.center[i].to_bits() as i64 + (mul_ii(lift as i32, n[i]) >> 15))
+                each3(|i| {
+                    let n = n[i].clamp(-NORMAL_LIMIT, NORMAL_LIMIT);
+                    own.center[i].to_bits() + (mul_ii(lift as i32, n) >> 15) as i32
+                })
             });
-            let oc = each3(|i| to_len(origin[i] - s.center[i].to_bits() as i64));
-            let b = dot_len_unit(oc, to_light);
+            // |O − C| per component is below 2³⁰ + 2²² (see `NORMAL_LIMIT`), so |O − C|² is
+            // below 2⁶² and b = (O − C)·L (L within 2⁻²⁹ of unit length) fits an `i32`:
+            // every step below is exact, with no clamp or saturation.
+            let oc = each3(|i| origin[i] - s.center[i].to_bits());
+            let b = (dot_ii(oc, to_light.map(|c| c.to_bits())) >> 30) as i32;
             if b >= 0 {
                 continue;
             }
-            let b = to_len(b).to_bits();
-            let miss = length_sq(oc.map(|c| c.to_bits() as i64)).saturating_sub(mul_ii(b, b));
+            let miss = dot_ii(oc, oc) - mul_ii(b, b);
             if miss <= s.radius_sq.to_bits() {
                 return true;
             }

@@ -7,9 +7,8 @@
 //! wide products stay in `i64` and saturate, so no input can wrap, even outside the ranges
 //! the prepare step guarantees.
 
-use super::mul::mul_ii;
 #[cfg(feature = "full-width")]
-use super::mul::{leading_zeros, mul_iu, mul_uu};
+use super::mul::{leading_zeros, mul_ii, mul_iu, mul_uu};
 use fixed::types::{I16F16, I2F30};
 
 /// A length or coordinate in scaled scene units.
@@ -29,6 +28,7 @@ pub(crate) fn each3<T>(mut f: impl FnMut(usize) -> T) -> [T; 3] {
 }
 
 /// `a·b` for a length vector and a unit vector, as raw I16F16 bits in `i64`.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(crate) fn dot_len_unit(a: V3<Len>, b: V3<Unit>) -> i64 {
     let [x, y, z] = each3(|i| mul_ii(a[i].to_bits(), b[i].to_bits()));
@@ -44,6 +44,7 @@ pub(crate) fn dot_unit(a: V3<Unit>, b: V3<Unit>) -> i64 {
 }
 
 /// `|a|²` of a length vector held as raw I16F16 bits in `i64`, as raw I32F32 bits.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(crate) fn length_sq(a: V3<i64>) -> i64 {
     let sq = |v: i64| {
@@ -64,6 +65,7 @@ pub(crate) fn len_times_unit(len: i64, u: Unit) -> i64 {
 }
 
 /// A raw `i64` clamped into an I16F16.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 pub(crate) fn to_len(v: i64) -> Len {
     Len::from_bits(v.clamp(i32::MIN as i64, i32::MAX as i64) as i32)
