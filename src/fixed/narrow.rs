@@ -389,7 +389,7 @@ fn precise_h(
     // L·D̂ = (d·L)·σ, Q30: D·L is d·L in Q59, |d·L| ≤ √2.
     let ld = mul_iu((dl >> 29) as i32, sigma) >> 31;
     // N·L = G·σ² − (N·V)(L·D̂): G in Q29 (|G·σ²| ≤ 2 on a hit), σ² in Q30.
-    let g29 = (g >> ns.g_shift.min(63)).clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+    let g29 = high_bits(g, ns.g_shift); // |G| ≤ |d|² ≤ 2 on a hit, as in `fast_cosines`
     let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
     let nl =
         ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, ld as i32) >> 30)).clamp(-ONE30, ONE30);
@@ -787,8 +787,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             mul_ii(oc[2], d[0]) - mul_ii(oc[0], d[2]),
             mul_ii(oc[0], d[1]) - mul_ii(oc[1], d[0]),
         ];
-        // |oc × D| ≤ r·|D| on a hit: below 2¹⁶ after the shift (the clamp is for rounding).
-        let high = w.map(|c| (c >> ns.cross_shift.min(63)).clamp(-0xffff, 0xffff) as i32);
+        // |oc × D| ≤ r·|D| on a hit (up to E′'s rounding, far below a unit here) and
+        // |D| ≤ √2·2²⁹ in a narrow frame: below √2·2¹⁵ after the shift, so `c·mu` below
+        // (mu ≤ 2¹⁵) fits an `i32`.
+        let high = w.map(|c| {
+            let high = c >> ns.cross_shift.min(63);
+            debug_assert!(high.unsigned_abs() < 46_400, "|oc × D| above r·|D|: {high}");
+            high as i32
+        });
         let mu = ((sigma as u32 * ns.gain) >> 16) as i32; // ≤ 2¹⁵
         let u = high.map(|c| (c * mu) >> 14);
         let dh = d.map(|c| ((c >> 15) * sigma) >> 14);
@@ -826,6 +832,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 let lift = (own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64)
                     .min(i32::MAX as i64);
                 each3(|i| {
+                    debug_assert!(n[i].abs() <= NORMAL_LIMIT, "normal {n:?}");
                     let n = n[i].clamp(-NORMAL_LIMIT, NORMAL_LIMIT);
                     own.center[i].to_bits() + (mul_ii(lift as i32, n) >> 15) as i32
                 })
