@@ -140,6 +140,9 @@ struct Track<const L: usize> {
     g: [Step; L],
 }
 
+/// The track index of no track (see [`NarrowRun::single`]).
+pub(crate) const NO_TRACK: usize = usize::MAX;
+
 /// The state of the narrow kernel along one run of a row.
 ///
 /// A run merges the spans of every sphere it crosses, but at one column only the tracks
@@ -161,12 +164,17 @@ pub(crate) struct NarrowRun<const S: usize, const L: usize> {
 }
 
 impl<const S: usize, const L: usize> NarrowRun<S, L> {
-    /// The active track, if exactly one is active at the current column, and the column
-    /// up to which that holds.
+    /// The active track, if at most one is active at the current column, and the column
+    /// up to which that holds. With none active (between spheres, where a run spans
+    /// several), the track is [`NO_TRACK`], which no track has: the row driver then
+    /// passes those columns as the background ([`NarrowRun::skip`]), or on ARMv6-M
+    /// [`PreparedFixed::narrow_shade`] finds no surface there, moves no track's quadrics
+    /// and gives the background, with no search.
     #[inline(always)]
     pub(crate) fn single(&self) -> Option<(usize, u32)> {
         match self.active.as_slice() {
             [only] => Some((*only as usize, self.changes_at)),
+            [] => Some((NO_TRACK, self.changes_at)),
             _ => None,
         }
     }
@@ -185,6 +193,15 @@ impl<const S: usize, const L: usize> NarrowRun<S, L> {
         for dl in first(&mut self.dl, lights) {
             dl.v = dl.v.wrapping_add(dl.d);
         }
+    }
+
+    /// Moves the run `k` pixels right where no track is active.
+    #[inline(always)]
+    pub(crate) fn skip(&mut self, k: u32, lights: usize) {
+        for _ in 0..k {
+            self.advance(lights);
+        }
+        self.x += k;
     }
 
     /// The active tracks again, once the run has reached the column where they change.
