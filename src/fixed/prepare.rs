@@ -509,8 +509,9 @@ fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
 }
 
 /// The I2F30 unit vector of `d`, a unit vector in `f32` (within `2⁻²³` of unit length):
-/// its components rounded to 30 bits (saturating, like `saturating_from_num`, but without
-/// its panic on NaN), then one Newton step toward unit length, `v·(1 − ε/2)` for
+/// its components rounded to 30 bits (each at most about 1, which I2F30 holds: no
+/// saturation is needed, and a component that did not convert, which no unit vector has,
+/// would read as 0), then one Newton step toward unit length, `v·(1 − ε/2)` for
 /// `|v|² = 1 + ε`, which leaves it within `2⁻⁴⁰` of unit length before the components'
 /// rounding. Exact integer arithmetic after the conversion, so the same bits on every
 /// target; a few products instead of the general normalization, for a vector already
@@ -520,10 +521,7 @@ fn unit_q30(d: Vec3) -> V3<Unit> {
     let mut v = [0i32; 3];
     let mut len2 = 0i64;
     for (v, c) in v.iter_mut().zip([d.x, d.y, d.z]) {
-        let saturated = if c < 0.0 { Unit::MIN } else { Unit::MAX };
-        *v = fixed_bits_i32(c, 30)
-            .map_or(saturated, Unit::from_bits)
-            .to_bits();
+        *v = fixed_bits_i32(c, 30).unwrap_or(0);
         len2 += mul_ii(*v, *v);
     }
     // ε = |v|² − 1 in Q60 (|ε| < 2⁻²¹: the f32 vector's rounding and the 30-bit one), then
