@@ -941,14 +941,16 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 return Err((Item::Camera, "vfov"));
             }
         }
+        // Each light's brightest channel, the largest level converted (the conversion is
+        // monotonic, so it is the largest of the converted levels).
         let intensity: f32 = self
             .lights
             .iter()
             .map(|l| match l {
-                FixedLight::Distant { arriving, .. } => arriving
-                    .iter()
-                    .map(|c| to_f32(c.to_bits() as i64, 16))
-                    .fold(0.0, f32::max),
+                FixedLight::Distant { arriving, .. } => {
+                    let brightest = arriving.iter().map(|c| c.to_bits()).max().unwrap_or(0);
+                    to_f32(brightest as i64, 16)
+                }
                 // Never reached: the narrow kernel takes distant lights only (checked above).
                 _ => 0.0,
             })
