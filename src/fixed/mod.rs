@@ -95,8 +95,8 @@
 //! 320×240 (`.ci/firmware`, firmware builds without `full-width`) a frame takes 6.8 M
 //! instructions on the Cortex-M0, 5.1 M on the Cortex-M4F and 5.0 M on the RV32IMAC, with
 //! the same bits on all three. Without `full-width` each sphere is tested only at the pixels
-//! its hit test passes (`outline`); with it, 1.16 sphere-pixels are tested per covered
-//! pixel (`spans`).
+//! its hit test passes (`outline`; on ARMv6-M within its rows and columns, see there); with
+//! it, 1.16 sphere-pixels are tested per covered pixel (`spans`).
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
 //! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against

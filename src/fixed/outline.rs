@@ -1,44 +1,29 @@
 //! Scanline spans of the fixed path without its full-width kernel (a firmware's build, no
-//! feature `full-width`): each sphere's span on a row is exactly the columns where the narrow
-//! kernel's hit test passes, found from the same integer quadric the kernel steps along the
-//! row, so there is no `f32` outline to compute at prepare and no margin to allow for.
+//! feature `full-width`): each sphere's span on a row holds exactly the columns where the
+//! narrow kernel's hit test passes (on ARMv6-M, its columns on every row, see below), found
+//! from the same integer quadric the kernel steps along the row, so there is no `f32`
+//! outline to compute at prepare and no margin to allow for.
 //!
 //! The narrow kernel tests a pixel by the sign of `E′` (see `narrow`), a quadratic in the
 //! pixel's half-pixel offsets `(dx, dy)` held with exact integer coefficients
 //! ([`Quadric`]). Where the sphere's outline on the screen is an ellipse (the sphere is in
-//! front of the camera and does not reach its side), `E′` is concave along every row and the
-//! rows that reach `E′ ≥ 0` are one interval: the prepare finds that interval once
-//! ([`outline_rows`]: three exact `i128` evaluations per sphere and a walk down the rows by
-//! forward differences, two `i128` additions a row), and each row in it
-//! its columns ([`outline_on_row`]: a binary search for the row's largest value, then the
-//! quadric's forward differences out to the span's ends). A row
-//! outside the interval costs one comparison. Elsewhere (a hyperbola or parabola on the
-//! screen, which the narrow kernel's field of view allows only for a sphere beside the
-//! camera) a sphere spans the whole frame, or the whole row. The spans are the hit test's
-//! own, so they change no pixel: `checks/no-models/tests/spans.rs` renders frames with and
-//! without them.
+//! front of the camera and does not reach its side), `E′` is concave along every row and
+//! every column, and the rows that reach `E′ ≥ 0` are one interval, as are the columns: the
+//! prepare finds both once ([`outline_rows`], [`outline_columns`]: three exact `i128`
+//! evaluations per sphere and a walk by forward differences, two `i128` additions a row or
+//! column). A row outside the rows costs one comparison; on a row inside them,
+//! [`outline_on_row`] walks in from the sphere's columns to the row's span. Elsewhere (a
+//! hyperbola or parabola on the screen, which the narrow kernel's field of view allows only
+//! for a sphere beside the camera) a sphere spans the whole frame, or the whole row. The
+//! spans hold every pixel the hit test passes, so they change no pixel:
+//! `checks/no-models/tests/spans.rs` renders frames with and without them.
 //!
 //! With `full-width`, the spans are `spans`' screen rectangles and `f32` row conics, which
 //! the full-width kernel and the anti-aliased edges need.
 
 use super::mul::mul_128;
-use super::quadric::{Quadric, Step};
+use super::quadric::Quadric;
 use crate::runs::Span;
-
-/// The first `k` in `[lo, hi)` for which `pred(k)` holds, or `hi` if none does, for a
-/// `pred` that is false up to some point and true from there on: a binary search.
-#[inline(always)]
-fn first(mut lo: u32, mut hi: u32, pred: impl Fn(u32) -> bool) -> u32 {
-    while lo < hi {
-        let mid = lo + (hi - lo) / 2;
-        if pred(mid) {
-            hi = mid;
-        } else {
-            lo = mid + 1;
-        }
-    }
-    lo
-}
 
 /// Largest magnitude of `c₂₀` (every row's `e₂`) for which [`outline_rows`] bounds the
 /// rows: then `4e₂` fits `i64`, and with `e₀`, `e₁` below `2⁶²` (values of the quadric in
@@ -96,47 +81,71 @@ pub(crate) fn outline_rows(e: &Quadric, height: u32) -> (u32, u32) {
     start.map_or((0, 0), |first| (first, height))
 }
 
-/// The columns of the row at offset `dy` (frame `width` columns wide) where `E′ ≥ 0`: the
-/// narrow kernel's hit test, so the span is exact. `E′` is concave along the row where
-/// `e₂ < 0` (otherwise the span is the whole row): a binary search on the sign of its
-/// forward difference finds its largest column, and from there the span's ends are walked
-/// to, one column at a time by the quadric's forward differences (two additions a column,
-/// exact, as the kernel's own steps are). On the exponent series' rows that is cheaper
-/// than two more binary searches, each step of which evaluates the quadric with two 32×32→64
-/// products (calls on ARMv6-M); a sphere as wide as the frame walks at most its width.
-pub(crate) fn outline_on_row(e: &Quadric, dy: i32, width: u32) -> Option<Span> {
-    let row = e.row(dy);
-    if row[2] >= 0 {
-        return Some(Span {
-            start: 0,
-            end: width,
-        });
-    }
-    let at = |column: u32| Quadric::step_at(row, 2 * column as i32 + 1 - width as i32);
-    let top = first(0, width.saturating_sub(1), |c| at(c).d <= 0);
-    // `d` is E′(c + 1) − E′(c) at column c, and moves by `dd` a column.
-    let Step { v, d, dd } = at(top);
-    if v < 0 {
-        return None;
-    }
-    let (mut start, mut value, mut diff) = (top, v, d);
-    while start > 0 {
-        let before = diff.wrapping_sub(dd);
-        value = value.wrapping_sub(before);
-        if value < 0 {
-            break;
+/// The columns `[start, end)` of a frame `width` columns wide on which the sphere whose
+/// narrow quadric is `e` can be hit: [`outline_rows`] of the same quadric with the two
+/// offsets' roles exchanged. Column `x` is at offset `dx = 2x + 1 − w`, which is the row
+/// offset of row `w − 1 − x` in a frame `w` rows high, so the rows found are the columns
+/// mirrored.
+#[inline(always)]
+pub(crate) fn outline_columns(e: &Quadric, width: u32) -> (u32, u32) {
+    let [c00, c10, c01, c20, c11, c02] = e.c;
+    let across = Quadric {
+        c: [c00, c01, c10, c02, c11, c20],
+    };
+    let (first, last) = outline_rows(&across, width);
+    (width - last, width - first)
+}
+
+/// The columns of the row at offset `dy` (frame `width` columns wide) where `E′ ≥ 0`, within
+/// the sphere's columns `[start, end)` ([`outline_columns`]): the narrow kernel's hit test,
+/// so the span is exact. Where `E′` is concave along the row (`e₂ < 0`) its columns at or
+/// above 0 are one interval, found by walking in from both ends of the sphere's columns,
+/// one column at a time by the quadric's forward differences (two additions a column,
+/// exact, as the kernel's own steps are); elsewhere the span is all of the sphere's
+/// columns. The walks cross only the columns beside the outline, which the kernel would
+/// otherwise test pixel by pixel.
+///
+/// On ARMv6-M the span is the sphere's columns as they are, and the kernel tests the
+/// pixels beside the outline: there its miss at a pixel costs about what a step of the
+/// walk does, so the walks would save no instructions (measured on the M0 demo: 6,487,644
+/// a frame with them, 6,491,383 without) and cost 360 bytes of flash. Where a 32×32→64
+/// product is one instruction (Cortex-M4, RV32IM, the host) the walks take 90,578 (M4F) and
+/// 167,880 (RV32) instructions off the demo's frame. Either way a pixel's colour does not
+/// depend on the span (`checks/no-models/tests/spans.rs`, which also shows that the
+/// columns hold every hit, since the walks start from them).
+#[inline(always)]
+pub(crate) fn outline_on_row(
+    e: &Quadric,
+    dy: i32,
+    width: u32,
+    columns: (u32, u32),
+) -> Option<Span> {
+    #[cfg(not(shadeline_short_mul))]
+    let (start, end) = walk_in(e.row(dy), width, columns);
+    #[cfg(shadeline_short_mul)]
+    let ((start, end), _) = (columns, (e, dy, width));
+    (start < end).then_some(Span { start, end })
+}
+
+/// The walks of [`outline_on_row`] on a row's `(e₀, e₁, e₂)`.
+#[cfg(not(shadeline_short_mul))]
+#[inline(always)]
+fn walk_in(row: [i64; 3], width: u32, (mut start, mut end): (u32, u32)) -> (u32, u32) {
+    if row[2] < 0 {
+        let at = |column: u32| Quadric::step_at(row, 2 * column as i32 + 1 - width as i32);
+        // `d` is E′(c + 1) − E′(c) at column c, and moves by `dd` a column.
+        let mut s = at(start);
+        while start < end && s.v < 0 {
+            s.v = s.v.wrapping_add(s.d);
+            s.d = s.d.wrapping_add(s.dd);
+            start += 1;
         }
-        diff = before;
-        start -= 1;
-    }
-    let (mut end, mut value, mut diff) = (top + 1, v, d);
-    while end < width {
-        value = value.wrapping_add(diff);
-        if value < 0 {
-            break;
+        let mut s = at(end.wrapping_sub(1));
+        while start < end && s.v < 0 {
+            s.d = s.d.wrapping_sub(s.dd);
+            s.v = s.v.wrapping_sub(s.d);
+            end -= 1;
         }
-        diff = diff.wrapping_add(dd);
-        end += 1;
     }
-    Some(Span { start, end })
+    (start, end)
 }

@@ -11,13 +11,13 @@
 //! [`RenderError::OutOfFixedRange`] naming the item and field); compute each sphere's screen
 //! rectangle (`spans`, with the full-width kernel); then, for a frame the narrow kernel
 //! takes, its constants: the exact quadrics (`quadric`), the caster filters and, without the
-//! full-width kernel, each sphere's rows (`outline`).
+//! full-width kernel, each sphere's rows and columns (`outline`).
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
 use super::mul::{dot_ii, mul_128, mul_128_u, mul_ii, mul_u128, mul_uu};
 #[cfg(not(feature = "full-width"))]
-use super::outline::outline_rows;
+use super::outline::{outline_columns, outline_rows};
 use super::quadric::Quadric;
 #[cfg(feature = "full-width")]
 use super::roots::inv_sqrt;
@@ -293,10 +293,12 @@ pub(crate) struct NarrowSphere {
     pub b_rises: bool,
     /// `E′`, see above.
     pub e: Quadric,
-    /// The rows on which `E′` can be at least 0, `[start, end)` (see `outline`): the spans
-    /// without the full-width kernel.
+    /// The rows and the columns on which `E′` can be at least 0, each `[start, end)` (see
+    /// `outline`): the spans without the full-width kernel.
     #[cfg(not(feature = "full-width"))]
     pub rows: (u32, u32),
+    #[cfg(not(feature = "full-width"))]
+    pub columns: (u32, u32),
 }
 
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
@@ -1059,6 +1061,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             b_rises: b[1] > 0,
             #[cfg(not(feature = "full-width"))]
             rows: outline_rows(&e, self.height),
+            #[cfg(not(feature = "full-width"))]
+            columns: outline_columns(&e, self.width),
             e,
         };
         match self.spheres.get_mut(i) {

@@ -79,7 +79,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// Sphere `s`'s span on row `y`: the columns where the narrow kernel's hit test passes,
-    /// within the rows the prepare found for it (see `outline`).
+    /// within the rows and columns the prepare found for it (see `outline`).
     #[cfg(not(feature = "full-width"))]
     #[inline(always)]
     fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
@@ -87,7 +87,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if !(n.rows.0 <= y && y < n.rows.1) {
             return None;
         }
-        outline_on_row(&n.e, self.height as i32 - 2 * y as i32 - 1, self.width)
+        let dy = self.height as i32 - 2 * y as i32 - 1;
+        outline_on_row(&n.e, dy, self.width, n.columns)
     }
 
     #[cfg(feature = "full-width")]
