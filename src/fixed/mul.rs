@@ -4,7 +4,7 @@
 //! Every product the kernel forms has two operands that fit 32 bits (their formats bound
 //! them, see [`super`]'s table), so it never needs a 64×64 product, let alone an overflow-
 //! checked one. (The prepare's exact quadrics, and the row test of the spans without the
-//! full-width kernel, need 64×64→128: [`mul_128`], [`mul_128_u`] and [`mul_u128`], from four
+//! full-width kernel, need 64×64→128: [`mul_128`] and [`mul_u128`], from four
 //! of these.) On targets with a widening multiply instruction these are the plain
 //! `i64`/`u64` products. On ARMv6-M and ARMv8-M Baseline (`cfg(shadeline_short_mul)`, set by
 //! the build script), whose only multiplier is 32×32→32, a 64-bit product is otherwise a call
@@ -207,16 +207,6 @@ pub(crate) fn dot_ii(a: [i32; 3], b: [i32; 3]) -> i64 {
 pub(crate) fn mul_128(a: i64, b: i64) -> i128 {
     let p = mul_u128(a.unsigned_abs(), b.unsigned_abs()) as i128;
     if (a < 0) != (b < 0) {
-        -p
-    } else {
-        p
-    }
-}
-
-/// `a·b` of an `i64` and a `u64`, exact.
-pub(crate) fn mul_128_u(a: i64, b: u64) -> i128 {
-    let p = mul_u128(a.unsigned_abs(), b) as i128;
-    if a < 0 {
         -p
     } else {
         p

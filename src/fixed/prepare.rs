@@ -15,7 +15,7 @@
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
-use super::mul::{dot_ii, mul_128, mul_128_u, mul_ii, mul_u128, mul_uu};
+use super::mul::{dot_ii, mul_128, mul_ii, mul_uu};
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::quadric::Quadric;
@@ -192,70 +192,56 @@ fn quadric(
     Some(())
 }
 
-/// A positive divisor `m·2^z` held as `⌊(2¹²⁷ − 1)/m⌋` with `m` in `[2⁶³, 2⁶⁴)`, so that a
-/// division by it is one 64×64→128 product and a shift: the prepare divides a dozen
-/// coefficients per sphere by the same two numbers, and a 128-bit division is a long
-/// routine on a 32-bit core.
+/// A positive divisor `dᵏ·2^z` (`d` below `2³²`, `k` one or two, `z` below 64): the
+/// prepare divides each of a sphere's quadric coefficients by `r²` or `r` times a power of
+/// two. The quotient is exact, rounded toward zero: the dividend's magnitude is divided as
+/// four 32-bit limbs, each one 64/32-bit division (the runtime's `u64` division, which a
+/// 32-bit core links anyway), `k` times over, then shifted. No 128-bit division routine
+/// (a long one on a 32-bit core) and no reciprocal to make.
 struct Divisor {
-    recip: u64,
-    z: i32,
+    d: u32,
+    passes: u32,
+    z: u32,
 }
 
 impl Divisor {
-    /// `m·2^z` for a divisor of at most 64 significant bits; `None` for 0. The reciprocal
-    /// comes from a 32-bit estimate and one Newton step `R + R·(2¹²⁷ − m·R)/2¹²⁷`
-    /// (within `2⁻⁶⁰`), not from a 128-bit division.
-    #[cfg_attr(shadeline_short_mul, inline(never))]
-    fn new(m: u64, z: i32) -> Option<Self> {
-        if m == 0 {
-            return None;
-        }
-        let lz = m.leading_zeros();
-        let m = m << lz;
-        // 2⁶³/(m_high + 1) underestimates 2⁹⁵/m by less than 2⁻³⁰ relative.
-        let high = (m >> 32) + 1; // in (2³¹, 2³²]
-        let r0 = ((1u64 << 63) / high) << 32;
-        // m·r0 ≤ 2¹²⁷, and the remainder is below 2¹²⁷·2⁻³⁰.
-        let rest = ((1u128 << 127) - mul_u128(m, r0)) >> 34;
-        let recip = r0.saturating_add((mul_u128(r0, rest as u64) >> 93) as u64);
-        Some(Divisor {
-            recip,
-            z: z - lz as i32,
-        })
-    }
-
-    /// `c` over the divisor, within two units plus `2⁻⁶⁰` of the quotient (the dividend is
-    /// taken to its top 63 bits, the reciprocal is within `2⁻⁶⁰`; test
-    /// `divisor_within_its_error_bound`); `None` if it does not fit `i64`.
+    /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Out of
+    /// line: once per coefficient.
     #[inline(never)]
     fn divide(&self, c: i128) -> Option<i64> {
-        let t = (128 - c.unsigned_abs().leading_zeros()).saturating_sub(63);
-        let p = mul_128_u(shift_to_i64(c, t)?, self.recip);
-        // c/(m·2^z) = (c >> t)·2^t·recip·2⁻¹²⁷·2^-z.
-        let s = t as i32 - 127 - self.z;
-        if s >= 0 {
-            // recip ≥ 2⁶³, so p is 0 or at least 2⁶³ in magnitude: shifted left, it fits
-            // `i64` only as 0.
-            return (p == 0).then_some(0);
+        let m = c.unsigned_abs();
+        let mut limbs = [
+            (m >> 96) as u32,
+            (m >> 64) as u32,
+            (m >> 32) as u32,
+            m as u32,
+        ];
+        // The prepare's radii are at least one unit (2¹⁶ raw): the `max` only shows the
+        // compiler that the division cannot be by 0.
+        let d = self.d.max(1) as u64;
+        for _ in 0..self.passes {
+            // Each step's dividend is below d·2³², so its quotient fits a limb.
+            let mut rest = 0u64;
+            for limb in &mut limbs {
+                let part = (rest << 32) | *limb as u64;
+                *limb = (part / d) as u32;
+                rest = part % d;
+            }
         }
-        shift_to_i64(p, (-s).min(127) as u32)
-    }
-}
-
-/// `x >> k` for `k ≤ 127`, if it fits `i64`. From the two 64-bit halves: on a 32-bit core
-/// a variable shift of an `i128` is a long inline sequence, of an `i64` one call. Out of
-/// line on ARMv6-M, for its flash.
-#[cfg_attr(shadeline_short_mul, inline(never))]
-fn shift_to_i64(x: i128, k: u32) -> Option<i64> {
-    let (high, low) = ((x >> 64) as i64, x as u64);
-    match k {
-        0 => (high == (low as i64) >> 63).then_some(low as i64),
-        1..=63 => {
-            // x >> k fits iff x >> (k + 63) = high >> (k − 1) is 0 or −1.
-            let top = high >> (k - 1);
-            (top == 0 || top == -1).then_some((((high as u64) << (64 - k)) | (low >> k)) as i64)
-        }
-        _ => Some(high >> (k - 64).min(63)),
+        let [a, b, c2, c3] = limbs;
+        let (high, low) = (
+            ((a as u64) << 32) | b as u64,
+            ((c2 as u64) << 32) | c3 as u64,
+        );
+        // (high·2⁶⁴ + low) >> z is below 2⁶³ iff high is below 2^(z − 1) (for z = 0:
+        // high is 0 and low below 2⁶³).
+        let z = self.z.min(63);
+        let q = match z {
+            0 => (high == 0).then_some(low),
+            _ => (high >> (z - 1) == 0).then_some((high << (64 - z)) | (low >> z)),
+        }?;
+        let q = i64::try_from(q).ok()?;
+        Some(if c < 0 { -q } else { q })
     }
 }
 
@@ -1002,12 +988,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let e_shift = 29u32.saturating_sub(log_sq);
         let g_shift = 28u32.saturating_sub(log_sq.div_ceil(2));
         // Scale 2^(29 + e_shift)/(r²·2⁵⁸); G's 2^(29 + g_shift)/(r·2⁸⁸).
-        let (Some(e_den), Some(g_den)) = (
-            Divisor::new(r2 as u64, 29 - e_shift as i32),
-            Divisor::new(r as u64, 59 - g_shift as i32),
-        ) else {
-            return Err("radius");
-        };
+        let (e_den, g_den) = (
+            Divisor {
+                d: r as u32,
+                passes: 2,
+                z: 29 - e_shift,
+            },
+            Divisor {
+                d: r as u32,
+                passes: 1,
+                z: 59 - g_shift,
+            },
+        );
         // The quadrics over D = dc + x·sx + y·sy, expanded at the centre of the screen
         // (`dx = dy = 0`), from b = oc·D in each direction (see `Form`).
         let oc32 = eye_offset.map(|c| c.to_bits());
@@ -1305,50 +1297,30 @@ mod tests {
         assert!(worst_len <= 1 << 32, "|v|² off by {worst_len} in Q60");
     }
 
+    /// The division is exact: the quotient rounded toward zero, `None` exactly where it
+    /// does not fit `i64`, for divisors at the prepare's extremes (`r` from one unit, `2¹⁶`
+    /// raw, to `2³¹`; `z` up to 63) and dividends at every power of two.
     #[test]
-    fn shift_to_i64_is_the_checked_shift() {
-        for x in values() {
-            for k in 0..=127 {
-                assert_eq!(shift_to_i64(x, k), i64::try_from(x >> k).ok(), "{x} >> {k}");
-            }
-        }
-    }
-
-    #[test]
-    fn divisor_within_its_error_bound() {
-        for (m, z) in [
-            (1u64, 0),
-            (3, 5),
-            (1 << 40, -20),
-            (u64::MAX, 31),
-            (0x1234_5678_9abc, 13),
+    fn divisor_is_exact() {
+        for (d, passes, z) in [
+            (1u32 << 16, 2u32, 0u32),
+            (1 << 16, 1, 63),
+            (65_537, 2, 29),
+            (0x1234_5679, 1, 31),
+            (0x7fff_ffff, 2, 0),
+            (u32::MAX, 1, 59),
+            (3 << 20, 2, 13),
         ] {
-            let den = Divisor::new(m, z).expect("not zero");
+            let den = Divisor { d, passes, z };
             for c in values() {
-                // The exact quotient c/(m·2^z), where it fits i64.
-                let exact = if z >= 0 {
-                    (c >> z) / m as i128
-                } else {
-                    match c.checked_mul(1 << -z) {
-                        Some(scaled) => scaled / m as i128,
-                        None => continue,
-                    }
-                };
-                let Ok(exact) = i64::try_from(exact) else {
-                    continue;
-                };
-                let got = den.divide(c);
-                let Some(got) = got else {
-                    // Refused only at the edge of the range.
-                    assert!(exact.unsigned_abs() > (1 << 62), "{c}/({m}·2^{z}) refused");
-                    continue;
-                };
-                // Two units, and 2⁻⁶⁰ of the quotient for the reciprocal's own error.
-                let bound = 2 + (exact.unsigned_abs() >> 60);
-                assert!(
-                    got.abs_diff(exact) <= bound,
-                    "{c}/({m}·2^{z}): {got} against {exact}"
-                );
+                let mut m = c.unsigned_abs();
+                for _ in 0..passes {
+                    m /= d as u128;
+                }
+                let want = i64::try_from(m >> z)
+                    .ok()
+                    .map(|q| if c < 0 { -q } else { q });
+                assert_eq!(den.divide(c), want, "{c}/({d}^{passes}·2^{z})");
             }
         }
     }
@@ -1401,8 +1373,13 @@ mod tests {
             let oc_l = dot_ii(oc, l);
             let w = dirs.map(|d| cross(oc, d));
             let v = dirs.map(|d| cross(l, d));
-            // A divisor that keeps the quotients within `i64`: 2¹²⁷ over it is below 2⁶².
-            let den = Divisor::new(r as u64, 66).expect("not zero");
+            // A divisor that keeps the quotients within `i64`: r²·2³⁴ is at least 2⁶⁶, and
+            // 2¹²⁷ over it below 2⁶².
+            let den = Divisor {
+                d: r as u32,
+                passes: 2,
+                z: 34,
+            };
             let mut e = Quadric::default();
             let mut g = Quadric::default();
             let e_ok = quadric((r2 - oc_len2 as i64, &gram, &b), Form::E, &den, &mut e);

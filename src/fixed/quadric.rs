@@ -15,7 +15,7 @@ use super::mul::mul_wide;
 /// narrow kernel forward-differences with two additions per pixel.
 ///
 /// The centre of the screen is the expansion point for every sphere. The coefficients'
-/// rounding (each within a few units of the quadric's held scale, see [`NarrowSphere`](super::prepare::NarrowSphere))
+/// rounding (each within one unit of the quadric's held scale, see [`NarrowSphere`](super::prepare::NarrowSphere))
 /// then weighs with the square of a pixel's distance from it, at most the frame's size,
 /// which no other point improves for a sphere that fills the frame; on the exponent series
 /// the frame is the same bits as with each sphere's own middle as the point.
