@@ -73,32 +73,6 @@ impl NarrowView {
     fn dirs(&self) -> [V3<i32>; 3] {
         [self.forward, self.step_x, self.step_y]
     }
-
-    /// The direction `D = forward + dy·step_y + dx·step_x` at the half-pixel offsets
-    /// `(dx, dy)` from the centre of the screen. Out of line on ARMv6-M, for its flash, like
-    /// the other prepare helpers there: it runs a few times a frame.
-    #[cfg_attr(shadeline_short_mul, inline(never))]
-    fn direction(&self, dx: i64, dy: i64) -> [i64; 3] {
-        // |dx|, |dy| < 2¹⁷ (the frame is at most `MAX_DIMENSION` wide and high) and the
-        // steps are `i32`: each product is one exact 32×32→64 product.
-        each3(|i| {
-            self.forward[i] as i64
-                + mul_ii(dy as i32, self.step_y[i])
-                + mul_ii(dx as i32, self.step_x[i])
-        })
-    }
-
-    /// `|D|²/2¹⁶` of [`direction`](Self::direction)`(dx, dy)`, each component taken to its
-    /// top bits first. The prepare's plane-scale check bounds `|dx·step_x|` and
-    /// `|dy·step_y|` by `MAX_PLANE_SCALE·2²⁹ < 2³⁶` and `forward` is below `2³⁰`, so each
-    /// component's top bits fit `i32` and their squares are exact 32×32→64 products.
-    #[cfg_attr(shadeline_short_mul, inline(never))]
-    fn len2_at(&self, dx: i64, dy: i64) -> i64 {
-        self.direction(dx, dy)
-            .iter()
-            .map(|&c| mul_ii((c >> 8) as i32, (c >> 8) as i32))
-            .sum::<i64>()
-    }
 }
 
 /// `v` (I16F48 bits) rounded to Q29, the narrow kernel's directions. Out of line on
@@ -610,7 +584,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // add to the conversion's (the M0 firmware's peak stack is the prepare's).
         let result = self
             .prepare_fields(scene, width, height)
-            .and_then(|()| self.prepare_narrow_or_refuse(scene));
+            .and_then(|corners| self.prepare_narrow_or_refuse(scene, corners));
         if result.is_err() {
             self.clear();
         }
@@ -634,13 +608,16 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
+    /// Converts the scene into `self`'s fields (all but the narrow kernel's), and says
+    /// whether every primary direction is within `√2` of the central one in length, which
+    /// the narrow kernel needs (see [`Self::prepare_narrow`]).
     #[inline(never)]
     fn prepare_fields(
         &mut self,
         scene: &Scene<S, L>,
         width: u32,
         height: u32,
-    ) -> Result<(), RenderError> {
+    ) -> Result<bool, RenderError> {
         self.clear();
         if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
             return Err(RenderError::BadSize { width, height });
@@ -660,6 +637,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err(out_of_range(Item::Camera, "vfov"));
         }
         let half_pixel = tan / height_f;
+        // The corners' directions are the longest: `|d|² = 1 + (dx² + dy²)·half_pixel²` for
+        // the orthonormal basis, at the half-pixel offsets `dx = w − 1`, `dy = h − 1`. At
+        // most 2 less `2⁻⁸`: the steps' rounding to Q29 (within `2⁻³⁰`, times offsets up
+        // to `2¹⁶`) and the basis' and this sum's `f32` rounding move the narrow kernel's
+        // integer `|d|²` by less than `2⁻¹⁰`, so it stays below 2.
+        let (dx, dy) = (width_f - 1.0, height_f - 1.0);
+        let corners = (dx * dx + dy * dy) * half_pixel * half_pixel <= 1.0 - 1.0 / 256.0;
 
         let k = scale_log2(scene);
         let scale = pow2(k);
@@ -866,13 +850,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .map_or(saturated, U16F16::from_bits)
                 .to_bits()
         });
-        Ok(())
+        Ok(corners)
     }
 
     /// [`Self::prepare_narrow`], and without the full-width kernel the refusal of a frame the
     /// narrow kernel does not take.
-    fn prepare_narrow_or_refuse(&mut self, scene: &Scene<S, L>) -> Result<(), RenderError> {
-        let narrow = self.prepare_narrow(scene);
+    fn prepare_narrow_or_refuse(
+        &mut self,
+        scene: &Scene<S, L>,
+        corners: bool,
+    ) -> Result<(), RenderError> {
+        let narrow = self.prepare_narrow(scene, corners);
         #[cfg(not(feature = "full-width"))]
         if let Err((item, field)) = narrow {
             return Err(RenderError::NeedsFullWidth { item, field });
@@ -883,9 +871,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions, or
-    /// says which item and field keep it from them (the first found).
+    /// says which item and field keep it from them (the first found). `corners`: whether
+    /// every primary direction is within `√2` of the central one in length (then
+    /// `|D| < 2³⁰` and every narrow format holds), from [`Self::prepare_fields`].
     #[inline(never)]
-    fn prepare_narrow(&mut self, scene: &Scene<S, L>) -> Result<(), (Item, &'static str)> {
+    fn prepare_narrow(
+        &mut self,
+        scene: &Scene<S, L>,
+        corners: bool,
+    ) -> Result<(), (Item, &'static str)> {
         // Without the full-width kernel `prepare_fields` has refused these already.
         #[cfg(feature = "full-width")]
         if let Some(light) = self
@@ -905,14 +899,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
         // Steps below 2²⁸ (so `2·step` fits; a one-pixel-wide image leaves `step_x` unbounded
-        // by the corner test below).
+        // by the corner test), and every direction within √2 of the central one in length
+        // (`corners`).
         let fits = |v: [i64; 3]| v.iter().all(|c| c.unsigned_abs() < 1 << 28);
         let (forward, step_x, step_y) = (
             to_q29(self.forward),
             to_q29(self.step_x),
             to_q29(self.step_y),
         );
-        if !(fits(step_x) && fits(step_y) && forward.iter().all(|c| c.unsigned_abs() < 1 << 30)) {
+        if !(corners
+            && fits(step_x)
+            && fits(step_y)
+            && forward.iter().all(|c| c.unsigned_abs() < 1 << 30))
+        {
             return Err((Item::Camera, "vfov"));
         }
         let view = NarrowView {
@@ -920,15 +919,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             step_x: step_x.map(|c| c as i32),
             step_y: step_y.map(|c| c as i32),
         };
-        // Every direction within √2 of the central one in length (the corners are the
-        // longest): then |D| < 2³⁰ and every narrow format holds.
-        let (w, h) = (self.width as i64 - 1, self.height as i64 - 1);
-        let centre = view.len2_at(0, 0);
-        for (dx, dy) in [(-w, -h), (-w, h), (w, -h), (w, h)] {
-            if view.len2_at(dx, dy) > 2 * centre {
-                return Err((Item::Camera, "vfov"));
-            }
-        }
         // Each light's brightest channel, the largest level converted (the conversion is
         // monotonic, so it is the largest of the converted levels).
         let intensity: f32 = self
@@ -1411,6 +1401,74 @@ mod tests {
             checked += 1;
         }
         assert!(checked > 1000, "{checked} cases");
+    }
+
+    /// The prepare's `f32` corner test keeps every narrow direction's integer `|D|²` within
+    /// `2·2⁵⁸` (`|d|² ≤ 2`), and takes every frame whose corners are within `2 − 2⁻⁷`
+    /// (computed in `f64` from the camera): random sizes up to the largest, aspect ratios,
+    /// orientations and fields of view about the limit.
+    #[test]
+    fn the_corner_test_keeps_every_direction_within_root_two() {
+        use crate::scene::Camera;
+        use crate::LinearRgb;
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |lo: f64, hi: f64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        let (mut taken, mut near) = (0, 0);
+        for round in 0..3000 {
+            let (w, h) = if round % 3 == 0 {
+                (next(1.0, 65_535.0) as u32, next(1.0, 65_535.0) as u32)
+            } else {
+                (next(1.0, 800.0) as u32, next(1.0, 800.0) as u32)
+            };
+            // The field of view at which the corners reach |d|² = 2, and about it.
+            let corner = ((w as f64 - 1.0).powi(2) + (h as f64 - 1.0).powi(2)).sqrt();
+            let limit = 2.0 * (h as f64 / corner.max(1.0)).atan().to_degrees();
+            let vfov = (limit * next(0.97, 1.03)).min(179.0);
+            let camera = Camera {
+                position: Vec3::new(next(-9.0, 9.0) as f32, next(-9.0, 9.0) as f32, 20.0),
+                look_at: Vec3::new(next(-1.0, 1.0) as f32, next(-1.0, 1.0) as f32, 0.0),
+                up: Vec3::new(next(-0.3, 0.3) as f32, 1.0, next(-0.3, 0.3) as f32),
+                vfov_degrees: vfov as f32,
+            };
+            let Ok(scene) = Scene::<1, 1>::new(camera, LinearRgb::new(0.0, 0.0, 0.0)) else {
+                continue;
+            };
+            let Ok(frame) = PreparedFixed::<1, 1>::new(&scene, w, h) else {
+                continue;
+            };
+            let tan = (vfov.to_radians() / 2.0).tan();
+            let want = 1.0 + corner * corner * (tan / h as f64).powi(2);
+            let Some(view) = frame.narrow else {
+                assert!(
+                    want > 2.0 - 1.0 / 128.0,
+                    "{w}x{h} at {vfov}°: |d|² {want} refused"
+                );
+                continue;
+            };
+            taken += 1;
+            near += (want > 2.0 - 1.0 / 64.0) as u32;
+            let (dx, dy) = (w as i64 - 1, h as i64 - 1);
+            for (sx, sy) in [(-dx, -dy), (-dx, dy), (dx, -dy), (dx, dy)] {
+                let len2: i128 = (0..3)
+                    .map(|i| {
+                        let c = view.forward[i] as i128
+                            + sy as i128 * view.step_y[i] as i128
+                            + sx as i128 * view.step_x[i] as i128;
+                        c * c
+                    })
+                    .sum();
+                assert!(len2 <= 2 << 58, "{w}x{h} at {vfov}°: |D|² {len2}");
+            }
+        }
+        assert!(
+            taken > 1000 && near > 100,
+            "{taken} frames taken, {near} near the limit"
+        );
     }
 
     /// `narrow_casters` against the same geometry in `f64`, from the prepared integers, over
