@@ -75,12 +75,12 @@ impl NarrowView {
     }
 }
 
-/// `v` (I16F48 bits) rounded to Q29, the narrow kernel's directions. Out of line on
-/// ARMv6-M: three vectors a frame.
+/// `v` (I16F48 bits, each component below 2 in magnitude) rounded to Q29, the narrow
+/// kernel's directions. Out of line on ARMv6-M: three vectors a frame.
 #[cfg_attr(shadeline_short_mul, inline(never))]
-fn to_q29(v: V3<I16F48>) -> [i64; 3] {
+fn to_q29(v: V3<I16F48>) -> [i32; 3] {
     // ((c >> 18) + 1) >> 1 is (c + 2¹⁸) >> 19, with no overflow near `i64::MAX`.
-    v.map(|c| ((c.to_bits() >> 18) + 1) >> 1)
+    v.map(|c| (((c.to_bits() >> 18) + 1) >> 1) as i32)
 }
 
 /// An `h` (Q31) from which a lobe of exponent `n` times `ks_intensity` (`ks` times the sum
@@ -609,8 +609,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// Converts the scene into `self`'s fields (all but the narrow kernel's), and says
-    /// whether every primary direction is within `√2` of the central one in length, which
-    /// the narrow kernel needs (see [`Self::prepare_narrow`]).
+    /// whether every primary direction is within `√2` of the central one in length and the
+    /// steps below ½, which the narrow kernel needs (see [`Self::prepare_narrow`]).
     #[inline(never)]
     fn prepare_fields(
         &mut self,
@@ -637,13 +637,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err(out_of_range(Item::Camera, "vfov"));
         }
         let half_pixel = tan / height_f;
-        // The corners' directions are the longest: `|d|² = 1 + (dx² + dy²)·half_pixel²` for
-        // the orthonormal basis, at the half-pixel offsets `dx = w − 1`, `dy = h − 1`. At
-        // most 2 less `2⁻⁸`: the steps' rounding to Q29 (within `2⁻³⁰`, times offsets up
-        // to `2¹⁶`) and the basis' and this sum's `f32` rounding move the narrow kernel's
-        // integer `|d|²` by less than `2⁻¹⁰`, so it stays below 2.
+        // The narrow kernel's view (see `prepare_narrow`). The corners' directions are the
+        // longest: `|d|² = 1 + (dx² + dy²)·half_pixel²` for the orthonormal basis, at the
+        // half-pixel offsets `dx = w − 1`, `dy = h − 1`. At most 2 less `2⁻⁸`: the steps'
+        // rounding to Q29 (within `2⁻³⁰`, times offsets up to `2¹⁶`) and the basis' and this
+        // sum's `f32` rounding move the narrow kernel's integer `|d|²` by less than `2⁻¹⁰`,
+        // so it stays below 2. And the steps below ½ (a one-pixel-wide image leaves
+        // `step_x` unbounded by the corners), so that in Q29 each component of a step, at
+        // most `half_pixel` (`1 + 2⁻²²` with the basis' rounding), and twice it fit `i32`.
         let (dx, dy) = (width_f - 1.0, height_f - 1.0);
-        let corners = (dx * dx + dy * dy) * half_pixel * half_pixel <= 1.0 - 1.0 / 256.0;
+        let corners = (dx * dx + dy * dy) * half_pixel * half_pixel <= 1.0 - 1.0 / 256.0
+            && half_pixel < 0.499;
 
         let k = scale_log2(scene);
         let scale = pow2(k);
@@ -873,7 +877,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions, or
     /// says which item and field keep it from them (the first found). `corners`: whether
     /// every primary direction is within `√2` of the central one in length (then
-    /// `|D| < 2³⁰` and every narrow format holds), from [`Self::prepare_fields`].
+    /// `|D| < 2³⁰` and every narrow format holds) and the steps below ½, from
+    /// [`Self::prepare_fields`].
     #[inline(never)]
     fn prepare_narrow(
         &mut self,
@@ -897,27 +902,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if self.spheres.len() > 256 {
             return Err((Item::Sphere(256), "center"));
         }
-        // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector.
-        // Steps below 2²⁸ (so `2·step` fits; a one-pixel-wide image leaves `step_x` unbounded
-        // by the corner test), and every direction within √2 of the central one in length
-        // (`corners`).
-        let fits = |v: [i64; 3]| v.iter().all(|c| c.unsigned_abs() < 1 << 28);
-        let (forward, step_x, step_y) = (
-            to_q29(self.forward),
-            to_q29(self.step_x),
-            to_q29(self.step_y),
-        );
-        if !(corners
-            && fits(step_x)
-            && fits(step_y)
-            && forward.iter().all(|c| c.unsigned_abs() < 1 << 30))
-        {
+        if !corners {
             return Err((Item::Camera, "vfov"));
         }
+        // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector: each
+        // component of `forward` at most 2²⁹ and of a step below 2²⁸ (`corners`).
         let view = NarrowView {
-            forward: forward.map(|c| c as i32),
-            step_x: step_x.map(|c| c as i32),
-            step_y: step_y.map(|c| c as i32),
+            forward: to_q29(self.forward),
+            step_x: to_q29(self.step_x),
+            step_y: to_q29(self.step_y),
         };
         // Each light's brightest channel, the largest level converted (the conversion is
         // monotonic, so it is the largest of the converted levels).
@@ -1404,9 +1397,10 @@ mod tests {
     }
 
     /// The prepare's `f32` corner test keeps every narrow direction's integer `|D|²` within
-    /// `2·2⁵⁸` (`|d|² ≤ 2`), and takes every frame whose corners are within `2 − 2⁻⁷`
-    /// (computed in `f64` from the camera): random sizes up to the largest, aspect ratios,
-    /// orientations and fields of view about the limit.
+    /// `2·2⁵⁸` (`|d|² ≤ 2`) and the steps below ½, and takes every frame whose corners are
+    /// within `2 − 2⁻⁷` (computed in `f64` from the camera) and whose half pixel is below
+    /// 0.49: random sizes from 1×1 up to the largest, aspect ratios, orientations and
+    /// fields of view about the limit.
     #[test]
     fn the_corner_test_keeps_every_direction_within_root_two() {
         use crate::scene::Camera;
@@ -1422,13 +1416,19 @@ mod tests {
         for round in 0..3000 {
             let (w, h) = if round % 3 == 0 {
                 (next(1.0, 65_535.0) as u32, next(1.0, 65_535.0) as u32)
+            } else if round % 5 == 0 {
+                (next(1.0, 4.0) as u32, next(1.0, 4.0) as u32)
             } else {
                 (next(1.0, 800.0) as u32, next(1.0, 800.0) as u32)
             };
             // The field of view at which the corners reach |d|² = 2, and about it.
             let corner = ((w as f64 - 1.0).powi(2) + (h as f64 - 1.0).powi(2)).sqrt();
             let limit = 2.0 * (h as f64 / corner.max(1.0)).atan().to_degrees();
-            let vfov = (limit * next(0.97, 1.03)).min(179.0);
+            let vfov = if w < 4 && h < 4 {
+                next(1.0, 179.0)
+            } else {
+                (limit * next(0.97, 1.03)).min(179.0)
+            };
             let camera = Camera {
                 position: Vec3::new(next(-9.0, 9.0) as f32, next(-9.0, 9.0) as f32, 20.0),
                 look_at: Vec3::new(next(-1.0, 1.0) as f32, next(-1.0, 1.0) as f32, 0.0),
@@ -1444,13 +1444,18 @@ mod tests {
             let tan = (vfov.to_radians() / 2.0).tan();
             let want = 1.0 + corner * corner * (tan / h as f64).powi(2);
             let Some(view) = frame.narrow else {
+                let steep = tan / h as f64 > 0.49;
                 assert!(
-                    want > 2.0 - 1.0 / 128.0,
+                    want > 2.0 - 1.0 / 128.0 || steep,
                     "{w}x{h} at {vfov}°: |d|² {want} refused"
                 );
                 continue;
             };
             taken += 1;
+            // Each step's components below ½ (2⁴⁷ in I16F48): twice them fit Q29 in `i32`.
+            for c in frame.step_x.iter().chain(&frame.step_y) {
+                assert!(c.to_bits().unsigned_abs() < 1 << 47, "{w}x{h} at {vfov}°");
+            }
             near += (want > 2.0 - 1.0 / 64.0) as u32;
             let (dx, dy) = (w as i64 - 1, h as i64 - 1);
             for (sx, sy) in [(-dx, -dy), (-dx, dy), (dx, -dy), (dx, dy)] {
