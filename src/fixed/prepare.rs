@@ -1051,8 +1051,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Gram matrix of its three directions and their dot products `b` with the sphere's eye
     /// offset (see [`quadric`]); the field that keeps the sphere from the narrow kernel if
     /// the light is not distant, `G` does not fit (`radius`) or a caster is too close
-    /// (`center`, see [`Self::narrow_casters`]). Out of line, like the sphere's.
-    #[inline(never)]
+    /// (`center`, see [`Self::narrow_casters`]). Inlined into the sphere's: its one caller,
+    /// and 54 bytes smaller on the M0 (the peak stack the same).
+    #[inline(always)]
     fn narrow_light(
         &self,
         i: usize,
