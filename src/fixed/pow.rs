@@ -28,6 +28,10 @@
 //! repeated squaring, a root by bisection), so neither the tables nor the code hold a float.
 //! Cost: about 12 32×32→64-bit multiplications, two leading-zero counts, no division.
 //!
+//! [`lobe`] is the full-width kernel's (feature `full-width`). The narrow kernel's lobe
+//! (`narrow::narrow_lobe`) takes the same route in 32-bit arithmetic and shares the tables,
+//! which are all a build without `full-width` holds of this module.
+//!
 //! # Measured error
 //!
 //! Against `f64` `powf` of the same `h` (test `lobe_error_per_n`, printed with
@@ -52,34 +56,48 @@
 //! about 10⁻⁹ relative) takes over beyond `n ≈ 10⁵`.
 
 /// `1 − cos` in U3F61: `1.0` is `1 << 61`.
+#[cfg(feature = "full-width")]
 const ONE_F61: u64 = 1 << 61;
 /// Below this `h` (`2⁻⁵`), `g` comes from its series; above, from the table.
+#[cfg(feature = "full-width")]
 const SERIES_LIMIT: u64 = 1 << 56;
 /// `1.0` in U1F31.
+#[cfg(feature = "full-width")]
 const ONE_F31: u64 = 1 << 31;
 /// `1/ln 2` in U1F31.
 pub(super) const INV_LN2_F31: u64 = 3_098_164_009;
 /// `ln 2` in U0F32.
+#[cfg(feature = "full-width")]
 const LN2_F32: u64 = 2_977_044_472;
 /// `1/k` in U1F31.
+#[cfg(feature = "full-width")]
 const HALF_F31: u64 = 1 << 30;
+#[cfg(feature = "full-width")]
 const THIRD_F31: u64 = 715_827_883;
+#[cfg(feature = "full-width")]
 const QUARTER_F31: u64 = 1 << 29;
+#[cfg(feature = "full-width")]
 const FIFTH_F31: u64 = 429_496_730;
+#[cfg(feature = "full-width")]
 const SIXTH_F31: u64 = 357_913_941;
+#[cfg(feature = "full-width")]
 const TWENTYFOURTH_F31: u64 = 89_478_485;
 
+#[cfg(feature = "full-width")]
 use super::exact::Exact;
+#[cfg(feature = "full-width")]
 use super::mul::{leading_zeros, mul_iu, mul_uu};
 
 /// The product of two values held in `u64` that both fit 32 bits (every operand in this
 /// module does: the formats above bound them), exact.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn mul(a: u64, b: u64) -> u64 {
     mul_uu(a as u32, b as u32)
 }
 
 /// `(1 − h)^n` in U1F31 (`1 << 31` is 1.0) for `h` in U3F61; 0 where `h ≥ 1` (cosine ≤ 0).
+#[cfg(feature = "full-width")]
 #[inline]
 pub(crate) fn lobe(h: u64, n: Exact) -> u32 {
     if h >= ONE_F61 {
@@ -101,6 +119,7 @@ pub(crate) fn lobe(h: u64, n: Exact) -> u32 {
 }
 
 /// `−log2(1 − h)` for `0 < h < 2⁻⁵` (U3F61) as `(m, e)`, value `m·2^e`, `m` normalized.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn neg_log2_small(h: u64) -> (u32, i32) {
     let h32 = h >> 29; // U0F32, < 2²⁷
@@ -120,6 +139,7 @@ fn neg_log2_small(h: u64) -> (u32, i32) {
 }
 
 /// `−log2(1 − h)` for `2⁻⁵ ≤ h < 1` (U3F61) as `(m, e)`, value `m·2^e`, `m` normalized.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn neg_log2_table(h: u64) -> (u32, i32) {
     let x = ONE_F61 - h; // > 0, ≤ 2⁶¹·(1 − 2⁻⁵)
@@ -146,6 +166,7 @@ fn neg_log2_table(h: u64) -> (u32, i32) {
 }
 
 /// `p·2^e` as U6F26, or `None` if it is 64 or more.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn to_u6f26(p: u64, e: i32) -> Option<u32> {
     if p == 0 {
@@ -164,6 +185,7 @@ fn to_u6f26(p: u64, e: i32) -> Option<u32> {
 }
 
 /// `2^-y` in U1F31 for `y` in U6F26.
+#[cfg(feature = "full-width")]
 #[inline(always)]
 fn exp2_neg(y: u32) -> u32 {
     let k = y >> 26;
