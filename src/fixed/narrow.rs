@@ -658,8 +658,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
     /// `N·V`; `None` for the background. Each active track's `E′` moves one pixel right
     /// where the loop reads it; every hit's `t` is compared, the first hit winning a tie.
-    /// Out of line: only where spans overlap.
-    #[inline(never)]
+    /// Out of line (only where spans overlap), except on ARMv6-M: there, inlined into the
+    /// pixel loop, the loop is both smaller and faster (measured on the M0 demo: 126 bytes
+    /// and 211,135 instructions a frame less; on the M4F and RV32 it costs 74,100 and
+    /// 122,235).
+    #[cfg_attr(shadeline_short_mul, inline(always))]
+    #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn narrow_surface(&self, run: &mut NarrowRun<S, L>) -> Option<Surface> {
         let (sigma, sigma2) = sigma_of(run.a.v);
         let mut best: Option<(i64, Surface)> = None;
