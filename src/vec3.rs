@@ -129,7 +129,6 @@ impl<T: Real> Add for Vec3<T> {
 impl<T: Real> Sub for Vec3<T> {
     type Output = Self;
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
-    #[cfg_attr(shadeline_short_mul, inline(never))]
     fn sub(self, o: Self) -> Self {
         Vec3::new(self.x - o.x, self.y - o.y, self.z - o.z)
     }
