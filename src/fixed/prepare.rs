@@ -179,9 +179,9 @@ struct Divisor {
 }
 
 impl Divisor {
-    /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Out of
-    /// line: once per coefficient.
-    #[inline(never)]
+    /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Inlined
+    /// into `quadric`, its one caller.
+    #[inline(always)]
     fn divide(&self, c: i128) -> Option<i64> {
         let m = c.unsigned_abs();
         let mut limbs = [
@@ -878,8 +878,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// says which item and field keep it from them (the first found). `corners`: whether
     /// every primary direction is within `√2` of the central one in length (then
     /// `|D| < 2³⁰` and every narrow format holds) and the steps below ½, from
-    /// [`Self::prepare_fields`].
-    #[inline(never)]
+    /// [`Self::prepare_fields`]. Inlined into its one caller.
+    #[inline(always)]
     fn prepare_narrow(
         &mut self,
         scene: &Scene<S, L>,
