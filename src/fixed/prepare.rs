@@ -480,12 +480,8 @@ fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
 /// within a few ulps of unit length.
 #[inline(never)]
 fn unit_q30(d: Vec3) -> V3<Unit> {
-    let mut v = [0i32; 3];
-    let mut len2 = 0i64;
-    for (v, c) in v.iter_mut().zip([d.x, d.y, d.z]) {
-        *v = fixed_bits_i32(c, 30).unwrap_or(0);
-        len2 += mul_ii(*v, *v);
-    }
+    let v = [d.x, d.y, d.z].map(|c| fixed_bits_i32(c, 30).unwrap_or(0));
+    let len2 = dot_ii(v, v);
     // ε = |v|² − 1 in Q60 (|ε| < 2⁻²¹: the f32 vector's rounding and the 30-bit one), then
     // ε/2 in Q51, which holds |ε| < 2⁻²⁰ in an i32; c·ε/2 is then below 2⁶⁰.
     let half_eps = ((len2 - (1 << 60)) >> 10).clamp(-(1 << 30), 1 << 30) as i32;
