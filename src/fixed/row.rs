@@ -332,7 +332,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             // Without the full-width kernel every prepared frame is a narrow one.
             #[cfg(not(feature = "full-width"))]
-            background.fill(run_pixels, start);
+            for (px, column) in run_pixels.iter_mut().zip(start..) {
+                *px = background.at(column);
+            }
             #[cfg(feature = "full-width")]
             let mut dir = self.direction(start as u32, y);
             #[cfg(feature = "full-width")]
