@@ -387,6 +387,40 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
     .unwrap();
     assert_eq!(refused(&s, 8, 8), Some((Item::Light(0), "intensity")));
 
+    // The kernels use kd·albedo and colour·intensity: an albedo or a colour above MAX_LEVEL
+    // alone is taken where the product is within it, and the product's field is named
+    // where it is not.
+    let bright = |albedo: f32, kd: f32, color: f32, intensity: f32| {
+        let mut s = base();
+        s.add_sphere(Sphere {
+            center: Vec3::new(3.0, 0.0, 0.0),
+            radius: 1.0,
+            material: Material {
+                kd,
+                albedo: LinearRgb::new(albedo, 0.5, 0.5),
+                ..Material::default()
+            },
+        })
+        .unwrap();
+        s.add_light(Light::Distant {
+            direction: Vec3::new(0.0, -1.0, 0.0),
+            color: LinearRgb::new(0.5, color, 0.5),
+            intensity,
+        })
+        .unwrap();
+        s
+    };
+    assert_eq!(refused(&bright(1.0e5, 0.01, 1.0, 1.0), 8, 8), None);
+    assert_eq!(refused(&bright(1.0, 1.0, 1.0e5, 0.01), 8, 8), None);
+    assert_eq!(
+        refused(&bright(1.0e5, 1.0, 1.0, 1.0), 8, 8),
+        Some((Item::Sphere(1), "kd"))
+    );
+    assert_eq!(
+        refused(&bright(1.0, 1.0, 1.0e5, 1.0), 8, 8),
+        Some((Item::Light(0), "intensity"))
+    );
+
     // A very bright point light is not refused: arriving light saturates per pixel.
     let mut s = base();
     s.add_light(Light::Point {

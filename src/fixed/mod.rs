@@ -81,8 +81,10 @@
 //! [`PreparedFixed::new`] returns [`RenderError::OutOfFixedRange`](crate::RenderError) naming
 //! the item and field, never a frame of wrapped values: `radius` (below `2⁻¹³` of the scene's
 //! extent, [`MIN_SCALED_RADIUS`] after scaling), `vfov` (`tan(vfov/2)·max(1, w/h)` above
-//! [`MAX_PLANE_SCALE`]), `albedo`/`kd`/`ks`/`color`/`intensity` (a channel of `albedo`,
-//! `kd·albedo`, `ks`, a distant light's colour or `colour·intensity` above [`MAX_LEVEL`]).
+//! [`MAX_PLANE_SCALE`]), `kd`/`ks`/`intensity` (a channel of `kd·albedo`, `ks` or a
+//! distant light's `colour·intensity` above [`MAX_LEVEL`]: the levels the kernels use; an
+//! albedo or a colour above it alone, times a `kd` or an intensity that brings it within,
+//! is taken).
 //!
 //! # Costs
 //!

@@ -49,8 +49,8 @@ pub(crate) const MAX_SCALE_LOG2: i32 = 19;
 pub const MIN_SCALED_RADIUS: f32 = 1.0;
 /// Largest `tan(vfov/2)·max(1, width/height)`: keeps primary-ray directions within ±256.
 pub const MAX_PLANE_SCALE: f32 = 127.0;
-/// Largest `kd·albedo`, `ks`, colour, and distant-light `colour·intensity` per channel:
-/// they are U16F16 and two of them multiply and add without wrapping.
+/// Largest `kd·albedo`, `ks` and distant-light `colour·intensity` per channel: they are
+/// U16F16 and two of them multiply and add without wrapping.
 pub const MAX_LEVEL: f32 = 32_767.0;
 
 /// The largest error of the narrow kernel's fast `h = 1 − cos` (Phong's `1 − R·V`,
@@ -523,8 +523,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// the [module table](crate::fixed)): a sphere smaller than `2⁻¹³` of the scene's extent
     /// (`radius`), a field of view or aspect ratio with `tan(vfov/2)·max(1, w/h)` above
     /// [`MAX_PLANE_SCALE`] (`vfov`), and `kd·albedo`, `ks`, or a distant light's
-    /// `colour·intensity` above [`MAX_LEVEL`] in a channel (`albedo`/`kd`, `ks`,
-    /// `color`/`intensity`).
+    /// `colour·intensity` above [`MAX_LEVEL`] in a channel (`kd`, `ks`, `intensity`).
     pub fn new(scene: &Scene<S, L>, width: u32, height: u32) -> Result<Self, RenderError> {
         let mut frame = Self::EMPTY;
         frame.prepare(scene, width, height)?;
@@ -674,7 +673,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             #[cfg(feature = "full-width")]
             let inv_radius =
                 inv_sqrt((radius_raw * radius_raw) as u64).ok_or(out_of_range(item, "radius"))?;
-            to_levels([m.albedo.r, m.albedo.g, m.albedo.b], item, "albedo")?;
             // The float paths' constants (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1 for the
             // normalized models; normalization factors; F₀), converted to fixed formats.
             // Without the full-width kernel only the classic models render: the others are
@@ -760,7 +758,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     color,
                     intensity,
                 } => {
-                    to_levels([color.r, color.g, color.b], item, "color")?;
                     let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
                     // Validated: a scene's light direction is finite and not zero.
                     let d = (-direction)
