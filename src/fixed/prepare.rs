@@ -180,8 +180,10 @@ struct Divisor {
 
 impl Divisor {
     /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Inlined
-    /// into `quadric`, its one caller.
-    #[inline(always)]
+    /// into `quadric`, its one caller, on ARMv6-M (24 bytes smaller there); out of line
+    /// elsewhere, where a firmware may hold the prepare at several capacities.
+    #[cfg_attr(shadeline_short_mul, inline(always))]
+    #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn divide(&self, c: i128) -> Option<i64> {
         let m = c.unsigned_abs();
         let mut limbs = [
@@ -477,8 +479,10 @@ fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
 /// `|v|² = 1 + ε`, which leaves it within `2⁻⁴⁰` of unit length before the components'
 /// rounding. Exact integer arithmetic after the conversion, so the same bits on every
 /// target; a few products instead of the general normalization, for a vector already
-/// within a few ulps of unit length.
-#[inline(never)]
+/// within a few ulps of unit length. Inlined on ARMv6-M, where its caller is too (see
+/// `prepare_fields`): 118 bytes smaller there.
+#[cfg_attr(shadeline_short_mul, inline(always))]
+#[cfg_attr(not(shadeline_short_mul), inline(never))]
 fn unit_q30(d: Vec3) -> V3<Unit> {
     let v = [d.x, d.y, d.z].map(|c| fixed_bits_i32(c, 30).unwrap_or(0));
     let len2 = dot_ii(v, v);
@@ -606,7 +610,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Converts the scene into `self`'s fields (all but the narrow kernel's), and says
     /// whether every primary direction is within `√2` of the central one in length and the
     /// steps below ½, which the narrow kernel needs (see [`Self::prepare_narrow`]).
-    #[inline(never)]
+    /// Inlined into [`Self::prepare`] on ARMv6-M, where that is 218 bytes smaller at the same
+    /// peak stack (the M0 demo's, 2,024 bytes); out of line elsewhere, where a firmware that
+    /// prepares frames of several capacities would hold a copy per capacity.
+    #[cfg_attr(shadeline_short_mul, inline(always))]
+    #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_fields(
         &mut self,
         scene: &Scene<S, L>,
@@ -871,8 +879,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// says which item and field keep it from them (the first found). `corners`: whether
     /// every primary direction is within `√2` of the central one in length (then
     /// `|D| < 2³⁰` and every narrow format holds) and the steps below ½, from
-    /// [`Self::prepare_fields`]. Inlined into its one caller.
-    #[inline(always)]
+    /// [`Self::prepare_fields`]. Inlined into its one caller on ARMv6-M (38 bytes smaller
+    /// there), out of line elsewhere, like `prepare_fields`.
+    #[cfg_attr(shadeline_short_mul, inline(always))]
+    #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_narrow(
         &mut self,
         scene: &Scene<S, L>,
