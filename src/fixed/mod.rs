@@ -94,8 +94,8 @@
 //! the column, forward-differenced (two 64-bit additions each), 16×16→32-bit products, two
 //! table lookups with linear interpolation for `1/|D|` and `N·V`, and 64-bit arithmetic only
 //! for the bright part of a narrow highlight (`precise_lobe`). On the exponent series at
-//! 320×240 (`.ci/firmware`, firmware builds without `full-width`) a frame takes 6.8 M
-//! instructions on the Cortex-M0, 5.1 M on the Cortex-M4F and 5.0 M on the RV32IMAC, with
+//! 320×240 (`.ci/firmware`, firmware builds without `full-width`) a frame takes 6.2 M
+//! instructions on the Cortex-M0, 4.4 M on the Cortex-M4F and 4.6 M on the RV32IMAC, with
 //! the same bits on all three. Without `full-width` each sphere is tested only at the pixels
 //! its hit test passes (`outline`; on ARMv6-M within its rows and columns, see there); with
 //! it, 1.16 sphere-pixels are tested per covered pixel (`spans`).

@@ -559,7 +559,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// Prepares `scene` for a `width × height` image into `self`, in place: what [`new`](Self::new)
     /// returns, without the prepared frame ever being on the stack (the M0 firmware prepares its
-    /// `static` frame this way, with a peak stack of 2,244 bytes). Fails like `new`; on an error
+    /// `static` frame this way, with a peak stack of 2,024 bytes). Fails like `new`; on an error
     /// `self` is left [`EMPTY`](Self::EMPTY), never half prepared. Spans are on, whatever
     /// [`with_spans`](Self::with_spans) set before.
     ///
