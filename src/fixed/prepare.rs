@@ -180,10 +180,8 @@ struct Divisor {
 
 impl Divisor {
     /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Inlined
-    /// into `quadric`, its one caller, on ARMv6-M (24 bytes smaller there); out of line
-    /// elsewhere, where a firmware may hold the prepare at several capacities.
-    #[cfg_attr(shadeline_short_mul, inline(always))]
-    #[cfg_attr(not(shadeline_short_mul), inline(never))]
+    /// into `quadric`, its one caller (24 bytes smaller on the M0).
+    #[inline(always)]
     fn divide(&self, c: i128) -> Option<i64> {
         let m = c.unsigned_abs();
         let mut limbs = [
@@ -611,8 +609,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// whether every primary direction is within `√2` of the central one in length and the
     /// steps below ½, which the narrow kernel needs (see [`Self::prepare_narrow`]).
     /// Inlined into [`Self::prepare`] on ARMv6-M, where that is 218 bytes smaller at the same
-    /// peak stack (the M0 demo's, 2,024 bytes); out of line elsewhere, where a firmware that
-    /// prepares frames of several capacities would hold a copy per capacity.
+    /// peak stack (the M0 demo's, 2,024 bytes); out of line elsewhere: inlined, it is copied
+    /// to every place a firmware prepares a frame (the M4F firmware grows by 1,208 bytes).
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_fields(
@@ -880,7 +878,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// every primary direction is within `√2` of the central one in length (then
     /// `|D| < 2³⁰` and every narrow format holds) and the steps below ½, from
     /// [`Self::prepare_fields`]. Inlined into its one caller on ARMv6-M (38 bytes smaller
-    /// there), out of line elsewhere, like `prepare_fields`.
+    /// there), out of line elsewhere, like `prepare_fields` and for the same reason.
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_narrow(
