@@ -1406,14 +1406,10 @@ mod tests {
     #[test]
     fn the_corner_test_keeps_every_direction_within_root_two() {
         use crate::scene::Camera;
+        use crate::test_scenes::uniform;
         use crate::LinearRgb;
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |lo: f64, hi: f64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
-        };
+        let mut draw = uniform(0x2545_f491_4f6c_dd1d);
+        let mut next = |lo: f64, hi: f64| draw(lo as f32, hi as f32) as f64;
         let (mut taken, mut near) = (0, 0);
         for round in 0..3000 {
             let (w, h) = if round % 3 == 0 {
