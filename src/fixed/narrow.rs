@@ -67,7 +67,8 @@
 //!   is below `2⁻¹⁷` (half a U16F16 step), even allowing for the error of `h`: the lobe is 0;
 //! - `fast_lobe_max`: where the fast lobe `λ` is within half an 8-bit level. Its error is
 //!   `ks·ΣI·(n·H_ERROR·(1 − h)^(n−1) + 1.4·10⁻⁴)` (the second term a bound on the narrow
-//!   `pow`'s own, which measures `5.4·10⁻⁵`); the slope `n·(1 − h)^(n−1)` is at most `n`, so if `ks·ΣI·n·H_ERROR`
+//!   `pow`'s own, held on `n ≤ 256`, where it measures `5.4·10⁻⁵`; above, the precise lobe
+//!   serves); the slope `n·(1 − h)^(n−1)` is at most `n`, so if `ks·ΣI·n·H_ERROR`
 //!   is within budget the fast lobe serves wherever the lobe is not 0; otherwise it is at
 //!   most `2n·λ` where `h ≤ ½`, so the fast lobe serves where `λ` is below the bound that
 //!   makes `2n·λ·H_ERROR` fit: the tails of the highlight, not its bright part.
@@ -77,10 +78,11 @@
 //! ill-conditioned and the fast `h` is not within its bound), takes `precise_lobe`: the same
 //! formulas in 30-bit fractions, from the same exact `|D|²`, `E′`, `G` and `D·L`, with `σ` and
 //! `√E′` from [`super::roots`] instead of the tables (`h` within `2⁻²⁵`, `2¹⁰` times closer than
-//! the fast one), and the same `pow` as the fast lobe. It forms no vector either, so the narrow kernel needs
-//! none of the full-width kernel's stages. On the exponent series at 320×240 that is 295 of its
-//! 11,840 covered pixels (test `few_pixels_take_the_precise_lobe`). Every other stage is the fast
-//! one, whatever the encoding: a pixel's linear colour does not depend on the encoding.
+//! the fast one), and the same `pow` as the fast lobe. It forms no vector either, so the
+//! narrow kernel needs none of the full-width kernel's stages. On the exponent series at
+//! 320×240 that is 295 of its 11,840 covered pixels (test `few_pixels_take_the_precise_lobe`).
+//! Every other stage is the fast one, whatever the encoding: a pixel's linear colour does not
+//! depend on the encoding.
 //!
 //! Every step is integer arithmetic with the same bits on every target; products are
 //! 16×16→32 bits (`|x| ≤ 2¹⁶` operands) except in the row's set-up, the precise lobe, the
@@ -1555,7 +1557,7 @@ mod tests {
             let mut worst = (0.0f64, 0.0);
             for k in 0..40_000u64 {
                 let h = if k < 20_000 {
-                    // Cubic spacing: down to 2⁻³¹ · (k/20 000)³ · 2⁻⁴.
+                    // Cubic spacing, h = (k/20 000)³·2⁻⁴, and a few Q31 units more.
                     ((k * k * k) as f64 / 8e12 * (1u64 << 27) as f64) as u32 + (k as u32 & 3)
                 } else {
                     ((k - 20_000) * (1 << 31) / 20_000) as u32

@@ -1017,6 +1017,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // The fast lobe's error, in levels of the brightest channel: its slope
         // n·(1 − h)^(n − 1) times h's error, and the narrow `pow`'s own (module `narrow`).
         // The slope is at most n (at h = 0), and at most 2n times the lobe where h ≤ ½.
+        // Above n = 256, the range the `pow`'s bound of 1.4·10⁻⁴ is held on, every pixel
+        // below the cutoff takes the precise lobe.
         let budget = 0.5 / (ks_intensity * 255.0) - 1.4e-4;
         let fast_lobe_max = if n > 256.0 || budget.is_nan() || budget <= 0.0 {
             0
