@@ -1,8 +1,8 @@
 //! Every integration test of shadeline, as the modules of one test binary: the renderers are
 //! generic over path, lane width, capacities and pixel format, and one crate instantiates
 //! them once for all the files, where a binary per file compiles and links its own copies
-//! of each. `common` holds the helpers the files share. (`checks/bit-identity` builds four of
-//! these files the same way, for other instruction sets.)
+//! of each. `common` holds the helpers the files share. (`frame_hashes` holds the frames that
+//! `checks/bit-identity` renders on other instruction sets.)
 
 mod common;
 
@@ -17,6 +17,7 @@ mod fixed_agreement;
 mod fixed_golden;
 mod fixed_no_panic;
 mod fixed_render;
+mod frame_hashes;
 mod models_agree;
 mod paths_agree;
 mod readme;

@@ -191,8 +191,8 @@ fn an_edge_pixel_lies_between_the_sphere_and_the_background() {
 
 /// The fixed path's anti-aliasing (features `antialias` and `full-width`): only pixels next
 /// to an outline change, the blends agree with the float paths' within a budget, and an
-/// anti-aliased frame has the same bits on every target (a golden CRC, which
-/// `.ci/bit-identity` checks on x86-64, aarch64 and wasm32).
+/// anti-aliased frame has the same bits on every target (a golden CRC here, and
+/// `checks/bit-identity`'s anti-aliased fixed frames on x86-64, aarch64 and wasm32).
 #[cfg(feature = "full-width")]
 mod fixed {
     use super::common::{frame, random_scenes, random_scenes_all_models};

@@ -8,8 +8,8 @@
 //! - golden CRCs of dithered frames; the fixed path's closeness to scalar with each encoding;
 //! - byte order of the display-ready byte rows.
 //!
-//! CI runs this file on the default target CPU and, with `.ci/bit-identity`, on the SSE2
-//! baseline, with `-C target-cpu=native`, on aarch64 (NEON) and on wasm32 (simd128).
+//! On the default target CPU; `checks/bit-identity` hashes every encoding of its frames on
+//! the SSE2 baseline, the native CPU, aarch64 (NEON) and wasm32 (simd128).
 
 use crate::common;
 use common::*;

@@ -1,8 +1,8 @@
 //! The float paths agree bit for bit: scalar, f32x4 and f32x8 give the same `f32` linear
 //! colour and the same hit record for every pixel, and the scanline spans change no pixel
-//! compared with testing every sphere at every pixel. CI runs this file on the default
-//! target CPU (x86-64-v3) and, with `.ci/bit-identity`, on the SSE2 baseline, with
-//! `-C target-cpu=native`, on aarch64 (NEON, under QEMU) and on wasm32 (simd128).
+//! compared with testing every sphere at every pixel, on the default target CPU (x86-64-v3).
+//! The same contract on the other instruction sets (the SSE2 baseline, the native CPU,
+//! aarch64 and wasm32) is `checks/bit-identity`'s (`.ci/bit-identity`).
 
 use crate::common;
 use common::*;

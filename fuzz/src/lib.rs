@@ -16,6 +16,8 @@
 //! refuse a valid scene (with `RenderError::OutOfFixedRange`), and its linear output is
 //! 16.16 fixed point, so a miss is the background quantized, not the background's bits.
 
+pub mod targets;
+
 use arbitrary::Arbitrary;
 use shadeline::encoding::{encode_levels, linear_code, linear_code_fixed};
 use shadeline::scene::{

@@ -18,9 +18,9 @@
 //!
 //! Scalar and SIMD differ only in the lane type, and every operation the kernel uses has the
 //! same IEEE-754 result at every width, so their frames are bit-identical
-//! (`tests/paths_agree.rs`, `tests/models_agree.rs`, `tests/encodings.rs`; CI runs them on
-//! x86-64 at the SSE2 baseline, AVX2 and the native CPU, on aarch64 with NEON and on wasm32
-//! with simd128: `.ci/bit-identity`).
+//! (`tests/paths_agree.rs`, `tests/models_agree.rs`, `tests/encodings.rs` on the host;
+//! `checks/bit-identity`'s frames on x86-64 at the SSE2 baseline, AVX2 and the native CPU, on
+//! aarch64 with NEON and on wasm32 with simd128: `.ci/bit-identity`).
 
 #[cfg(feature = "area-lights")]
 pub(crate) mod area;
