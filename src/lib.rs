@@ -143,12 +143,13 @@ pub use pixel::{
     Bgr565, BytePixel, FixedShade, Gray8, HitRecord, LinearRgb, Pixel, Rgb565, Rgb888, Shade,
 };
 pub use presets::{
-    area_lights, covered_sphere, exponent_series, exponent_series_with_capacity, full_moon,
-    materials, materials_with_capacity, microfacets, microfacets_with_capacity, model_samples,
-    AREA_LIGHTS_SIZE, AREA_LIGHT_RADIUS, EXPONENT_SERIES_SIZE, FULL_MOON_SIZE, MATERIALS_SIZE,
+    area_lights, covered_sphere, exponent_series, exponent_series_with_capacity, floor, full_moon,
+    lamp, materials, materials_with_capacity, microfacets, microfacets_with_capacity,
+    model_samples, three_lights, MatrixScene, AREA_LIGHTS_SIZE, AREA_LIGHT_RADIUS,
+    EXPONENT_SERIES_SIZE, FULL_MOON_SIZE, MATERIALS_SIZE, MATRIX_SIZE, MATRIX_SPHERE_RADIUS,
     MICROFACETS_SIZE,
 };
-pub use render::{Encoded, Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
+pub use render::{Encoded, Kernel, Render, RenderError, LINE_CHUNK, MAX_DIMENSION};
 pub use runs::Span;
 pub use scene::{
     Camera, Item, ItemKind, Light, Lobe, Material, Metal, Microfacet, Model, Problem, Scene,

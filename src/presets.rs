@@ -11,10 +11,16 @@
 //! Blinn-Phong spheres). [`area_lights`] shows a sphere light's soft shadows and wider
 //! highlights. [`covered_sphere`] of each of
 //! [`model_samples`] is a frame of one reflection model alone, for measuring its cost.
+//!
+//! The scene matrix, [`floor`], [`lamp`] and [`three_lights`] at [`MATRIX_SIZE`], is what a
+//! user draws first: spheres resting on a floor sphere under distant lights, a point light,
+//! or both, with classic, Lambert and normalized materials. The firmware measures each
+//! path's cost on them.
 
 use crate::pixel::LinearRgb;
 use crate::scene::{
-    Camera, Light, Material, Metal, Microfacet, Model, Scene, SceneError, Specular, Sphere, Surface,
+    Camera, Light, Lobe, Material, Metal, Microfacet, Model, Scene, SceneError, Specular, Sphere,
+    Surface,
 };
 use crate::vec3::Vec3;
 
@@ -512,6 +518,204 @@ pub fn covered_sphere(material: Material) -> Result<Scene<1, 2>, SceneError> {
             direction,
             color: LinearRgb::new(1.0, 1.0, 1.0),
             intensity: 1.0,
+        })?;
+    }
+    Ok(scene)
+}
+
+/// The size of the scene matrix's frames ([`floor`], [`lamp`], [`three_lights`]): 320 × 240,
+/// the SPI display a firmware author ships.
+pub const MATRIX_SIZE: (u32, u32) = (320, 240);
+
+/// The capacities of the scene matrix's scenes: six spheres, three lights.
+pub type MatrixScene = Scene<6, 3>;
+
+/// Where the matrix's four spheres rest: `(x, y)` of each centre, radius
+/// [`MATRIX_SPHERE_RADIUS`], on the floor sphere of radius 100 centred 100 below the origin
+/// (each `y` puts the sphere's lowest point on the floor's surface, to `f32`).
+const RESTING: [(f32, f32); 4] = [(-2.7, 0.7638), (-0.9, 0.796), (0.9, 0.796), (2.7, 0.7638)];
+
+/// The radius of the scene matrix's four spheres.
+pub const MATRIX_SPHERE_RADIUS: f32 = 0.8;
+
+/// The matrix's stage: a camera a little above the floor looking at the row of spheres with a
+/// 40° vertical field of view, a dark blue background.
+fn matrix_stage() -> Result<MatrixScene, SceneError> {
+    let camera = Camera {
+        position: Vec3::new(0.0, 1.8, 7.0),
+        look_at: Vec3::new(0.0, 0.6, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: 40.0,
+    };
+    Scene::new(camera, LinearRgb::new(0.05, 0.06, 0.1))
+}
+
+/// The matrix's floor: a sphere of radius 100 whose top is the plane `y = 0`.
+fn floor_sphere(material: Material) -> Sphere {
+    Sphere {
+        center: Vec3::new(0.0, -100.0, 0.0),
+        radius: 100.0,
+        material,
+    }
+}
+
+/// A key light from the upper right and a cool fill from the left, both distant.
+const KEY: Light = Light::Distant {
+    direction: Vec3::new(-0.5, -1.0, -0.6),
+    color: LinearRgb::new(1.0, 1.0, 1.0),
+    intensity: 2.0,
+};
+const FILL: Light = Light::Distant {
+    direction: Vec3::new(0.8, -0.4, -0.3),
+    color: LinearRgb::new(0.6, 0.7, 1.0),
+    intensity: 0.5,
+};
+
+/// The colours of the matrix's four spheres, left to right.
+const ALBEDOS: [LinearRgb; 4] = [
+    LinearRgb::new(0.7, 0.12, 0.1),
+    LinearRgb::new(0.12, 0.5, 0.15),
+    LinearRgb::new(0.1, 0.2, 0.7),
+    LinearRgb::new(0.6, 0.5, 0.1),
+];
+
+/// `floor` of the scene matrix: four classic Phong spheres (exponents 10, 40, 150 and 600)
+/// resting on a classic Phong floor sphere of radius 100, under two distant lights: the
+/// ordinary scene of a user's first minutes, its spheres touching the floor and shadowing
+/// it. The same numbers are in `scenes/floor.toml`.
+pub fn floor() -> Result<MatrixScene, SceneError> {
+    let mut scene = matrix_stage()?;
+    scene.add_light(KEY)?;
+    scene.add_light(FILL)?;
+    scene.add_sphere(floor_sphere(Material {
+        albedo: LinearRgb::new(0.5, 0.5, 0.5),
+        kd: 0.8,
+        ks: 0.1,
+        shininess: 8.0,
+        model: Model::Phong,
+    }))?;
+    for ((&(x, y), albedo), n) in RESTING.iter().zip(ALBEDOS).zip([10.0, 40.0, 150.0, 600.0]) {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, y, 0.0),
+            radius: MATRIX_SPHERE_RADIUS,
+            material: Material {
+                albedo,
+                kd: 0.7,
+                ks: 0.3,
+                shininess: n,
+                model: Model::Phong,
+            },
+        })?;
+    }
+    Ok(scene)
+}
+
+/// The point light of [`lamp`] and [`three_lights`]: up and to the right of the spheres,
+/// bringing about 1.85 to the floor 4.5 below it (`intensity = 4π·d²·E`).
+const LAMP: Light = Light::Point {
+    position: Vec3::new(2.0, 4.5, 2.0),
+    color: LinearRgb::new(1.0, 0.95, 0.85),
+    intensity: 471.0,
+    radius: 0.0,
+};
+
+/// `lamp` of the scene matrix: the [`floor`] scene's spheres as normalized Blinn-Phong
+/// plastics (a dielectric's Fresnel, `ior` 1.5; exponents 10, 40, 150 and 600) on a Lambert
+/// floor, under one point light. The same numbers are in `scenes/lamp.toml`. Needs the
+/// feature `blinn-phong`.
+pub fn lamp() -> Result<MatrixScene, SceneError> {
+    let mut scene = matrix_stage()?;
+    scene.add_light(LAMP)?;
+    scene.add_sphere(floor_sphere(Material {
+        albedo: LinearRgb::new(0.5, 0.5, 0.5),
+        kd: 1.0,
+        ks: 0.0,
+        shininess: 1.0,
+        model: Model::Lambert,
+    }))?;
+    let plastic = Model::NormalizedBlinnPhong(Specular {
+        surface: Surface::Dielectric { ior: Some(1.5) },
+        ..Specular::default()
+    });
+    for ((&(x, y), albedo), n) in RESTING.iter().zip(ALBEDOS).zip([10.0, 40.0, 150.0, 600.0]) {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, y, 0.0),
+            radius: MATRIX_SPHERE_RADIUS,
+            material: Material {
+                albedo,
+                kd: 0.8,
+                ks: 0.2,
+                shininess: n,
+                model: plastic,
+            },
+        })?;
+    }
+    Ok(scene)
+}
+
+/// `three-lights` of the scene matrix: a point light and two distant lights over mixed
+/// models on a Lambert floor: left to right a classic Phong plastic, a Lambert clay, a
+/// normalized Phong plastic with Fresnel and two lobes (a coat), and normalized Blinn-Phong
+/// gold. The same numbers are in `scenes/three-lights.toml`. Needs the feature
+/// `blinn-phong`.
+pub fn three_lights() -> Result<MatrixScene, SceneError> {
+    let mut scene = matrix_stage()?;
+    scene.add_light(LAMP)?;
+    scene.add_light(KEY)?;
+    scene.add_light(FILL)?;
+    scene.add_sphere(floor_sphere(Material {
+        albedo: LinearRgb::new(0.45, 0.45, 0.4),
+        kd: 1.0,
+        ks: 0.0,
+        shininess: 1.0,
+        model: Model::Lambert,
+    }))?;
+    let mut coat = [Lobe::NONE; crate::scene::MORE_LOBES];
+    coat[0] = Lobe {
+        weight: 0.1,
+        shininess: 1000.0,
+    };
+    let plastic = |albedo, model| Material {
+        albedo,
+        kd: 0.7,
+        ks: 0.3,
+        shininess: 60.0,
+        model,
+    };
+    let materials = [
+        plastic(ALBEDOS[0], Model::Phong),
+        // Lambert uses neither `ks` nor `shininess`: the scene file leaves them out.
+        Material {
+            ks: 0.0,
+            shininess: 1.0,
+            ..plastic(ALBEDOS[1], Model::Lambert)
+        },
+        plastic(
+            ALBEDOS[2],
+            Model::NormalizedPhong(Specular {
+                surface: Surface::Dielectric { ior: Some(1.5) },
+                more_lobes: coat,
+            }),
+        ),
+        // A metal has no diffuse lobe: no `albedo` or `kd`.
+        Material {
+            albedo: LinearRgb::new(0.0, 0.0, 0.0),
+            kd: 0.0,
+            ks: 1.0,
+            ..plastic(
+                ALBEDOS[3],
+                Model::NormalizedBlinnPhong(Specular {
+                    surface: Surface::Metal(Metal::Gold),
+                    ..Specular::default()
+                }),
+            )
+        },
+    ];
+    for (&(x, y), material) in RESTING.iter().zip(materials) {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, y, 0.0),
+            radius: MATRIX_SPHERE_RADIUS,
+            material,
         })?;
     }
     Ok(scene)

@@ -593,19 +593,24 @@ pub fn builtin_scene() -> Result<SceneFile, SceneError> {
 }
 
 /// The names [`preset`] knows.
-pub const PRESETS: [&str; 5] = [
+pub const PRESETS: [&str; 8] = [
     "exponent-series",
     "materials",
     "microfacets",
     "full-moon",
     "area-lights",
+    "floor",
+    "lamp",
+    "three-lights",
 ];
 
 /// A built-in scene by name (see [`PRESETS`]) in a [`FileScene`], at its scene file's size:
 /// `exponent-series` ([`shadeline::exponent_series`]), `materials`
 /// ([`shadeline::materials`]), `microfacets` ([`shadeline::microfacets`]), `full-moon`
 /// ([`shadeline::full_moon`]) or `area-lights` ([`shadeline::area_lights`] with its sphere
-/// light of radius [`shadeline::AREA_LIGHT_RADIUS`]).
+/// light of radius [`shadeline::AREA_LIGHT_RADIUS`]), or one of the scene matrix, `floor`,
+/// `lamp` and `three-lights` ([`shadeline::floor`], [`shadeline::lamp`],
+/// [`shadeline::three_lights`]).
 pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
     match name {
         "exponent-series" => Some(
@@ -625,6 +630,11 @@ pub fn preset(name: &str) -> Option<Result<SceneFile, SceneError>> {
             shadeline::area_lights(shadeline::AREA_LIGHT_RADIUS)
                 .and_then(|s| to_file_scene(&s, shadeline::AREA_LIGHTS_SIZE)),
         ),
+        "floor" => Some(shadeline::floor().and_then(|s| to_file_scene(&s, shadeline::MATRIX_SIZE))),
+        "lamp" => Some(shadeline::lamp().and_then(|s| to_file_scene(&s, shadeline::MATRIX_SIZE))),
+        "three-lights" => {
+            Some(shadeline::three_lights().and_then(|s| to_file_scene(&s, shadeline::MATRIX_SIZE)))
+        }
         _ => None,
     }
 }
