@@ -78,6 +78,11 @@ pub enum RenderError {
         item: Item,
         /// The field's name, as spelled in the scene file.
         field: &'static str,
+        /// For a sphere's `radius` below `2⁻¹³` of the scene's extent: the item that sets
+        /// the extent (the one reaching farthest from the origin, such as a floor sphere),
+        /// which shrinking would let the sphere fit. `None` for a number out of range on
+        /// its own.
+        beside: Option<Item>,
     },
     /// A point light has a radius (a sphere light), and this build renders point lights of
     /// radius 0 only on this path: the fixed path with the crate feature `area-lights` but
@@ -129,7 +134,28 @@ impl fmt::Display for RenderError {
             RenderError::RowOutOfRange { y, height } => {
                 write!(f, "row {y} is outside an image {height} rows high")
             }
-            RenderError::OutOfFixedRange { item, field } => write!(
+            RenderError::OutOfFixedRange {
+                item,
+                field,
+                beside: Some(Item::Camera),
+            } => write!(
+                f,
+                "{item}: `{field}` is below 1/8192 of the scene's extent, which the camera's \
+                 distance from the origin sets, and does not fit the fixed-point path's number \
+                 formats beside it: bring the camera closer to the origin or make {item} larger"
+            ),
+            RenderError::OutOfFixedRange {
+                item,
+                field,
+                beside: Some(large),
+            } => write!(
+                f,
+                "{item}: `{field}` is below 1/8192 of the scene's extent, which {large} sets, \
+                 and does not fit the fixed-point path's number formats beside it: make {large} \
+                 smaller (a floor sphere 1,000 times the radius of the spheres on it looks as \
+                 flat as one 10,000 times) or {item} larger"
+            ),
+            RenderError::OutOfFixedRange { item, field, .. } => write!(
                 f,
                 "{item}: `{field}` does not fit the fixed-point path's number formats"
             ),
@@ -147,6 +173,45 @@ impl fmt::Display for RenderError {
 }
 
 impl core::error::Error for RenderError {}
+
+/// The kernel a prepared frame's rows take: each path chooses it once per frame, in its
+/// prepare ([`Prepared::kernel`](crate::Prepared::kernel),
+/// [`PreparedFixed::kernel`](crate::PreparedFixed::kernel)), and its row driver dispatches on
+/// it with one `match`.
+///
+/// ```
+/// use shadeline::{exponent_series, lamp, Item, Kernel, Prepared, Scalar};
+/// let series = Prepared::<Scalar, _, _>::new(&exponent_series()?, 64, 48)?;
+/// assert_eq!(series.kernel(), Kernel::Narrow);
+/// let lamp = Prepared::<Scalar, _, _>::new(&lamp()?, 64, 48)?;
+/// assert_eq!(lamp.kernel(), Kernel::General { item: Item::Light(0), field: "type" });
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Kernel {
+    /// The narrow kernel: classic Phong and Blinn-Phong under distant lights, shaded from
+    /// per-row quadrics of the column, on every sphere the camera is clearly outside of.
+    Narrow,
+    /// The path's general kernel (on the fixed path, the full-width one), because the
+    /// narrow kernel does not take `item`'s `field`: the first such item found.
+    General {
+        /// The first item the narrow kernel does not take.
+        item: Item,
+        /// Its field, as spelled in the scene file: `type` (a point light), `model`,
+        /// `shininess`, `vfov`, `center` (the camera close to the sphere, or a sphere close
+        /// to its casters), `radius` (a number out of the narrow kernel's formats).
+        field: &'static str,
+    },
+}
+
+impl fmt::Display for Kernel {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Kernel::Narrow => f.write_str("narrow"),
+            Kernel::General { item, field } => write!(f, "general, for {item}: `{field}`"),
+        }
+    }
+}
 
 /// Anything that renders rows: every path's prepared frame implements it.
 ///

@@ -18,6 +18,7 @@ mod fixed_golden;
 mod fixed_no_panic;
 mod fixed_render;
 mod frame_hashes;
+mod kernel_choice;
 mod models_agree;
 mod paths_agree;
 mod readme;

@@ -2,7 +2,7 @@
 //! `f64` reference.
 //!
 //! ```text
-//! shadeline render  [SCENE.toml | --preset exponent-series|materials|microfacets|full-moon|area-lights]
+//! shadeline render  [SCENE.toml | --preset NAME]
 //!                   [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
 //!                   [--threads N] [--width W] [--height H] [--repeat N]
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
@@ -18,7 +18,9 @@
 //! counterparts (`scenes/microfacets.toml`, 960×480), and `--preset full-moon` is a Lambert
 //! and an Oren–Nayar sphere lit from behind the viewer (`scenes/full-moon.toml`, 640×320);
 //! `--preset area-lights` is four spheres of growing shininess under one sphere light
-//! (`scenes/area-lights.toml`, 640×320). Without a scene file or preset all three use the built-in exponent series (the numbers of
+//! (`scenes/area-lights.toml`, 640×320); `--preset floor`, `lamp` and `three-lights` are the
+//! scene matrix (spheres resting on a floor under distant lights, a point light, or both;
+//! 320×240). Without a scene file or preset all three use the built-in exponent series (the numbers of
 //! `scenes/exponent-series.toml`, 1024×747). A bad scene file is reported as one line
 //! `FILE:LINE:COL: error: …` on stderr, with exit code 2; so is a bad size or a frame too
 //! large for the memory, as one `error: …` line (the message names the size; buffers are
@@ -102,7 +104,8 @@ struct SceneChoice {
     /// A scene file (TOML); without one (and without `--preset`), the built-in exponent series.
     scene: Option<PathBuf>,
     /// A built-in scene instead of a file: `exponent-series`, `materials` (the gallery of
-    /// reflection models), `microfacets` (GGX and Oren–Nayar), `full-moon` or `area-lights`.
+    /// reflection models), `microfacets` (GGX and Oren–Nayar), `full-moon`, `area-lights`, or
+    /// the scene matrix: `floor`, `lamp`, `three-lights`.
     #[arg(long, value_parser = PossibleValuesParser::new(PRESETS))]
     preset: Option<String>,
 }
@@ -286,6 +289,7 @@ fn render(
     let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
     let frame = (path.prepare)(&file.scene, file.width, file.height, input.options(&file))
         .map_err(|e| Failure::input(format!("error: {e}")))?;
+    println!("{}", paths::kernel_line(path.name, frame.kernel()));
     let png = open_output(output)?;
     let mut rgb =
         new_frame(file.width, file.height).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
@@ -337,14 +341,17 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     let ref_rgb = compare::reference_rgb(&reference);
     let mut rows = Vec::new();
     let mut images = Vec::new();
-    let mut refusals = Vec::new();
+    let mut notes = Vec::new();
     for path in PATHS {
         // A path that does not render something the scene holds (a shadeline built without
         // a feature the scene needs) is reported and left out, not the end of the comparison.
-        if let Err(PrepareError::Render(e)) = (path.prepare)(scene, w, h, sharp) {
-            refusals.push(format!("{:<8} refused: {e}", path.name));
-            images.push(vec![Rgb888::default(); w as usize * h as usize]);
-            continue;
+        match (path.prepare)(scene, w, h, sharp) {
+            Err(PrepareError::Render(e)) => {
+                notes.push(format!("{:<8} refused: {e}", path.name));
+                images.push(vec![Rgb888::default(); w as usize * h as usize]);
+                continue;
+            }
+            Ok(frame) => notes.push(paths::kernel_line(path.name, frame.kernel())),
         }
         let mut times = Vec::new();
         let mut rgb = Vec::new();
@@ -373,8 +380,8 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         if threads == 1 { "" } else { "s" }
     );
     print!("{}", compare::table(&rows));
-    for refusal in &refusals {
-        println!("{refusal}");
+    for note in &notes {
+        println!("{note}");
     }
     png.write_image(&compare::picture(w, h, &ref_rgb, &images))
         .map_err(write_failed(output))?;

@@ -7,8 +7,8 @@
 use crate::rows::{render_rows, render_rows_into, FrameError};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
 use shadeline::{
-    FloatPath, HitRecord, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar, Simd4,
-    Simd8,
+    FloatPath, HitRecord, Kernel, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar,
+    Simd4, Simd8,
 };
 
 /// A frame prepared on some path, rendered whole into a new buffer on `threads` threads.
@@ -22,9 +22,32 @@ pub trait Frame: Sync {
     fn render_rgb_into(&self, frame: &mut [Rgb888], threads: usize) -> Result<(), RenderError>;
     /// The frame's hit records: which sphere each pixel shows and which lights are blocked.
     fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, FrameError>;
+    /// The kernel the frame's rows take, and why.
+    fn kernel(&self) -> Kernel;
 }
 
-impl<R: Render + Sync> Frame for R {
+/// A prepared frame of one of the core's paths: each says which kernel its rows take.
+pub trait ChoosesKernel {
+    /// The path's own `kernel()`.
+    fn kernel(&self) -> Kernel;
+}
+
+impl<W: FloatPath, const S: usize, const L: usize> ChoosesKernel for Prepared<W, S, L> {
+    fn kernel(&self) -> Kernel {
+        Prepared::kernel(self)
+    }
+}
+
+impl<const S: usize, const L: usize> ChoosesKernel for PreparedFixed<S, L> {
+    fn kernel(&self) -> Kernel {
+        PreparedFixed::kernel(self)
+    }
+}
+
+impl<R: Render + ChoosesKernel + Sync> Frame for R {
+    fn kernel(&self) -> Kernel {
+        ChoosesKernel::kernel(self)
+    }
     fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, FrameError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
             self.render_line(y, row)
@@ -98,7 +121,7 @@ impl std::fmt::Debug for Path {
 }
 
 /// Boxes a prepared frame of any path.
-fn boxed<R: Render + Sync + 'static>(
+fn boxed<R: Render + ChoosesKernel + Sync + 'static>(
     frame: Result<R, RenderError>,
 ) -> Result<Box<dyn Frame>, PrepareError> {
     Ok(Box::new(frame?))
@@ -129,6 +152,22 @@ pub const PATHS: &[Path] = &[
         boxed(PreparedFixed::<S, L>::new(s, w, h).map(|f| f.with_antialiasing(options.antialias)))
     }),
 ];
+
+/// What the harness prints for a path's kernel: the fixed path's general kernel is its
+/// full-width one.
+pub fn kernel_line(path: &str, kernel: Kernel) -> String {
+    match kernel {
+        Kernel::Narrow => format!("{path:<8} kernel: narrow"),
+        Kernel::General { item, field } => {
+            let name = if path == "fixed" {
+                "full-width"
+            } else {
+                "general"
+            };
+            format!("{path:<8} kernel: {name}, because of {item}: `{field}`")
+        }
+    }
+}
 
 /// A [`Path`] entry of [`PATHS`].
 const fn path(name: &'static str, prepare: Prepare) -> Path {

@@ -28,7 +28,7 @@ use super::vector::{each3, Len, Unit, V3};
 #[cfg(feature = "full-width")]
 use crate::brdf::LOBES;
 use crate::brdf::{Params, BLINN_PHONG};
-use crate::render::RenderError;
+use crate::render::{Kernel, RenderError};
 #[cfg(not(feature = "full-width"))]
 use crate::scene::Model;
 #[cfg(feature = "full-width")]
@@ -422,7 +422,13 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     /// `narrow_lights`).
     #[cfg(feature = "full-width")]
     pub(crate) casters: heapless::Vec<[u32; L], S>,
-    /// The primary directions in the narrow kernel's form, if the frame uses it.
+    /// The kernel the rows take, with the reason if not the narrow one
+    /// (`prepare_narrow_or_refuse`). Without the full-width kernel every frame is a narrow
+    /// one, and [`PreparedFixed::kernel`] says so without a field.
+    #[cfg(feature = "full-width")]
+    pub(crate) kernel: Kernel,
+    /// The primary directions in the narrow kernel's form, if the frame uses it: `Some`
+    /// exactly when the kernel is [`Kernel::Narrow`] (in a prepared frame).
     pub(crate) narrow: Option<NarrowView>,
     /// Per sphere and light, the narrow kernel's constants (set with `narrow`).
     pub(crate) narrow_lights: heapless::Vec<[NarrowLight; L], S>,
@@ -442,7 +448,27 @@ fn widening(n: f32, blinn: bool) -> [u32; 2] {
 }
 
 fn out_of_range(item: Item, field: &'static str) -> RenderError {
-    RenderError::OutOfFixedRange { item, field }
+    RenderError::OutOfFixedRange {
+        item,
+        field,
+        beside: None,
+    }
+}
+
+/// The refusal of sphere `item`, whose radius is below `2⁻¹³` of the scene's extent: it names
+/// the item that sets the extent too, unless that is the sphere itself. Out of line: only
+/// refused scenes reach it.
+#[inline(never)]
+fn small_beside_extent<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    item: Item,
+) -> RenderError {
+    let large = scene.extent_item();
+    RenderError::OutOfFixedRange {
+        item,
+        field: "radius",
+        beside: (large != item).then_some(large),
+    }
 }
 
 /// `v·scale` per component in fixed point with `frac` fraction bits ([`fixed_bits`]), if
@@ -548,6 +574,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         lights: heapless::Vec::new(),
         #[cfg(feature = "full-width")]
         casters: heapless::Vec::new(),
+        #[cfg(feature = "full-width")]
+        kernel: Kernel::Narrow,
         narrow: None,
         narrow_lights: heapless::Vec::new(),
         use_spans: true,
@@ -596,6 +624,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.lights.clear();
         #[cfg(feature = "full-width")]
         self.casters.clear();
+        #[cfg(feature = "full-width")]
+        {
+            self.kernel = Kernel::Narrow;
+        }
         self.narrow = None;
         self.narrow_lights.clear();
         self.use_spans = true;
@@ -673,8 +705,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let center = to_len(s.center, scale, item, "center")?;
             let radius = fixed_bits_i32(s.radius * scale, 16)
                 .map(Len::from_bits)
-                .filter(|r| *r >= MIN_SCALED_RADIUS)
                 .ok_or(out_of_range(item, "radius"))?;
+            if radius < MIN_SCALED_RADIUS {
+                return Err(small_beside_extent(scene, item));
+            }
             let radius_raw = radius.to_bits() as i64;
             #[cfg(feature = "full-width")]
             let inv_radius =
@@ -869,8 +903,26 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err(RenderError::NeedsFullWidth { item, field });
         }
         #[cfg(feature = "full-width")]
-        let _ = narrow;
+        {
+            self.kernel = match narrow {
+                Ok(()) => Kernel::Narrow,
+                Err((item, field)) => Kernel::General { item, field },
+            };
+        }
         Ok(())
+    }
+
+    /// The kernel this frame's rows take, and why if it is not the narrow one: the first
+    /// light that is not distant, sphere with a normalized model (or Lambert, Oren–Nayar,
+    /// GGX), sphere the camera or a caster is close to or whose numbers do not fit the
+    /// narrow formats, or a field of view too wide for them (`vfov`). Without the feature
+    /// `full-width` it is always [`Kernel::Narrow`]: such a frame is refused instead
+    /// ([`RenderError::NeedsFullWidth`], with the same item and field).
+    pub fn kernel(&self) -> Kernel {
+        #[cfg(feature = "full-width")]
+        return self.kernel;
+        #[cfg(not(feature = "full-width"))]
+        Kernel::Narrow
     }
 
     /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions, or

@@ -29,7 +29,7 @@ use super::prepare::{FixedSphere, PreparedFixed};
 use super::vector::{each3, V3};
 use crate::encoding::{linear_code_fixed, Encoding};
 use crate::pixel::{pixel_from_codes, FixedShade, HitRecord, Pixel};
-use crate::render::{check_segment, Render, RenderError};
+use crate::render::{check_segment, Kernel, Render, RenderError};
 #[cfg(feature = "full-width")]
 use crate::runs::merge_runs_into;
 use crate::runs::{coverage_of, walk_runs, Background, Span};
@@ -135,7 +135,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(never)]
     fn narrow_pixels<P: Pixel, const PLAIN: bool>(
         &self,
-        row: (u32, &[Option<Span>], Encoding, &Background<P>),
+        row: RunRow<'_, P>,
         start: u32,
         run_pixels: &mut [P],
     ) -> bool {
@@ -286,6 +286,10 @@ impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
     }
 }
 
+/// What a run of a row is shaded with: the row, its spheres' spans, the encoding and the
+/// background.
+type RunRow<'a, P> = (u32, &'a [Option<Span>], Encoding, &'a Background<P>);
+
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The body of [`Render::render_segment_with`] on a checked segment; `PLAIN`: whether
     /// `encoding` is the default.
@@ -313,39 +317,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let background = Background::new(encoding, |x| {
             encode::<P, PLAIN>(self.background, HitRecord::default(), encoding, x, y)
         });
-        #[cfg(feature = "full-width")]
-        let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
         // The edge stage's row state, once per row for all its runs.
         #[cfg(all(feature = "antialias", feature = "full-width"))]
         let edges = self.antialias.then(|| self.edge_row(y));
         walk_runs(out, x as usize, runs, &background, |start, run_pixels| {
             let row = (y, &spans[..], encoding, &background);
-            if self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels) {
-                #[cfg(all(feature = "antialias", feature = "full-width"))]
-                self.antialiased::<P, PLAIN>(
-                    (y, &spans[..], encoding),
-                    &edges,
-                    start as u32,
-                    run_pixels,
-                );
-                return;
-            }
-            // Without the full-width kernel every prepared frame is a narrow one.
-            #[cfg(not(feature = "full-width"))]
-            for (px, column) in run_pixels.iter_mut().zip(start..) {
-                *px = background.at(column);
-            }
-            #[cfg(feature = "full-width")]
-            let mut dir = self.direction(start as u32, y);
-            #[cfg(feature = "full-width")]
-            for (px, column) in run_pixels.iter_mut().zip(start as u32..) {
-                let shaded = self.shade_ray(dir, column, &spans, P::NEEDS_HITS);
-                *px = match shaded {
-                    Some(s) => encode::<P, PLAIN>(s.color, s.hit, encoding, column, y),
-                    None => background.at(column as usize),
-                };
-                for (c, a) in dir.iter_mut().zip(advance) {
-                    *c = I16F48::from_bits(c.to_bits().saturating_add(a));
+            match self.kernel() {
+                Kernel::Narrow => {
+                    self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels);
+                }
+                Kernel::General { .. } => {
+                    self.full_width_pixels::<P, PLAIN>(row, start as u32, run_pixels);
                 }
             }
             #[cfg(all(feature = "antialias", feature = "full-width"))]
@@ -356,6 +338,43 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 run_pixels,
             );
         });
+    }
+
+    /// The full-width kernel over `run_pixels` from column `start`: one ray per pixel, its
+    /// direction stepped along the row.
+    #[cfg(feature = "full-width")]
+    fn full_width_pixels<P: Pixel, const PLAIN: bool>(
+        &self,
+        (y, spans, encoding, background): RunRow<'_, P>,
+        start: u32,
+        run_pixels: &mut [P],
+    ) {
+        let advance = self.step_x.map(|c| c.to_bits().saturating_mul(2));
+        let mut dir = self.direction(start, y);
+        for (px, column) in run_pixels.iter_mut().zip(start..) {
+            let shaded = self.shade_ray(dir, column, spans, P::NEEDS_HITS);
+            *px = match shaded {
+                Some(s) => encode::<P, PLAIN>(s.color, s.hit, encoding, column, y),
+                None => background.at(column as usize),
+            };
+            for (c, a) in dir.iter_mut().zip(advance) {
+                *c = I16F48::from_bits(c.to_bits().saturating_add(a));
+            }
+        }
+    }
+
+    /// Without the full-width kernel every prepared frame is a narrow one
+    /// ([`PreparedFixed::kernel`]): never called, the background for completeness.
+    #[cfg(not(feature = "full-width"))]
+    fn full_width_pixels<P: Pixel, const PLAIN: bool>(
+        &self,
+        (_, _, _, background): RunRow<'_, P>,
+        start: u32,
+        run_pixels: &mut [P],
+    ) {
+        for (px, column) in run_pixels.iter_mut().zip(start as usize..) {
+            *px = background.at(column);
+        }
     }
 
     /// The `edges` stage over a shaded run, if the frame is anti-aliased.

@@ -16,8 +16,8 @@
 use super::lane::{Lane, Rooted, SquareRoot};
 use crate::brdf::Params;
 use crate::pixel::LinearRgb;
-use crate::render::{RenderError, MAX_DIMENSION};
-use crate::scene::{Light, Scene};
+use crate::render::{Kernel, RenderError, MAX_DIMENSION};
+use crate::scene::{Item, Light, Scene};
 use crate::vec3::Vec3;
 use core::cmp::Ordering;
 use core::marker::PhantomData;
@@ -262,7 +262,10 @@ pub struct Prepared<W: FloatPath = Scalar, const S: usize = 16, const L: usize =
     /// without one are shaded by a kernel that holds only the classic models' code (see
     /// `float::row`).
     pub(crate) normalized: bool,
-    /// The narrow kernel's frame constants, if the frame takes it (see `narrow`).
+    /// The kernel the rows take, with the reason if not the narrow one (`prepare_narrow`).
+    pub(crate) kernel: Kernel,
+    /// The narrow kernel's frame constants: `Some` exactly when `kernel` is
+    /// [`Kernel::Narrow`] (both set by `prepare_narrow`; see `narrow`).
     pub(crate) narrow: Option<NarrowView<L>>,
     /// Per sphere and light, the narrow kernel's caster filter (set with `narrow`).
     pub(crate) narrow_lights: heapless::Vec<[NarrowLight; L], S>,
@@ -396,29 +399,41 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             #[cfg(feature = "area-lights")]
             sphere_lights,
             normalized,
+            kernel: Kernel::Narrow,
             narrow: None,
             narrow_lights: heapless::Vec::new(),
             _path: PhantomData,
         };
-        frame.prepare_narrow(scene);
+        frame.kernel = match frame.prepare_narrow(scene) {
+            Ok(()) => Kernel::Narrow,
+            Err((item, field)) => Kernel::General { item, field },
+        };
         Ok(frame)
+    }
+
+    /// The kernel this frame's rows take, and why if it is not the narrow one: the first
+    /// light that is not distant, sphere whose model is not classic or whose highlight is
+    /// too sharp for the narrow kernel's `pow`, or sphere the camera is close to.
+    pub fn kernel(&self) -> Kernel {
+        self.kernel
     }
 
     /// Sets up the narrow kernel (see `narrow`) if the frame meets its conditions: every
     /// light distant, every sphere classic with `ks·ΣI·n` within [`SHARPEST`], the camera
-    /// clearly outside every sphere.
-    fn prepare_narrow(&mut self, scene: &Scene<S, L>) {
+    /// clearly outside every sphere; otherwise names the first item and field that keeps the
+    /// frame from it.
+    fn prepare_narrow(&mut self, scene: &Scene<S, L>) -> Result<(), (Item, &'static str)> {
         let mut to_light = [Vec3::default(); L];
         let mut intensity = 0.0f32;
-        for (t, l) in to_light.iter_mut().zip(&self.lights) {
+        for (k, (t, l)) in to_light.iter_mut().zip(&self.lights).enumerate() {
             let PreparedLight::Distant { to_light, arriving } = *l else {
-                return;
+                return Err((Item::Light(k), "type"));
             };
             *t = to_light;
             intensity += arriving.x.max(arriving.y).max(arriving.z);
         }
-        if self.normalized {
-            return;
+        if let Some(i) = self.spheres.iter().position(|s| s.normalized) {
+            return Err((Item::Sphere(i), "model"));
         }
         let sx = self.right.scale(self.x_scale / self.width_f);
         let sy = self.up.scale(self.y_scale / self.height_f);
@@ -426,7 +441,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let mut narrow_lights = heapless::Vec::new();
         for i in 0..self.spheres.len() {
             let Some(s) = self.spheres.get(i).copied() else {
-                return;
+                return Err((Item::Sphere(i), "center"));
             };
             let r = 1.0 / s.inv_radius;
             let oc = s.eye_offset;
@@ -436,8 +451,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 sharp.partial_cmp(&SHARPEST),
                 Some(Ordering::Less | Ordering::Equal)
             );
-            if oc.dot(oc) <= (r + 2.0 * eps) * (r + 2.0 * eps) || !within {
-                return;
+            if oc.dot(oc) <= (r + 2.0 * eps) * (r + 2.0 * eps) {
+                return Err((Item::Sphere(i), "center"));
+            }
+            if !within {
+                return Err((Item::Sphere(i), "shininess"));
             }
             let o = oc.scale(s.inv_radius);
             // The middle column: the centre's projection, as a whole number of half pixels.
@@ -458,7 +476,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 *nl = self.narrow_filter(scene, i, k, *t);
             }
             if narrow_lights.push(lights).is_err() {
-                return;
+                return Err((Item::Sphere(i), "center"));
             }
             if let Some(sphere) = self.spheres.get_mut(i) {
                 sphere.narrow = Some(narrow);
@@ -471,6 +489,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             to_light,
             l_sx: to_light.map(|l| l.cross(sx)),
         });
+        Ok(())
     }
 
     /// Sphere `i`'s caster filter for distant light `k` toward `to_light` (see the fixed
@@ -531,7 +550,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         self
     }
 
-    /// The per-row constants of row `j`: camera-plane `y` is `(1 − 2(j + ½)/h)·tan(vfov/2)`.
     /// Turns analytic anti-aliasing of the spheres' silhouettes on or off (off by default).
     ///
     /// With it on, a pixel the outline of its front sphere crosses gets that sphere's
@@ -558,6 +576,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         self
     }
 
+    /// The per-row constants of row `j`: camera-plane `y` is `(1 − 2(j + ½)/h)·tan(vfov/2)`.
     #[inline]
     pub(crate) fn row(&self, j: u32) -> Row {
         let yc = (1.0 - (2.0 * (j as f32 + 0.5)) / self.height_f) * self.y_scale;

@@ -23,7 +23,7 @@ use super::narrow::NarrowRow;
 use super::prepare::{FloatPath, Prepared, Row};
 use crate::encoding::{linear_code, luma, Encoding};
 use crate::pixel::{pixel_from_codes, HitRecord, LinearRgb, Pixel, Shade};
-use crate::render::{check_segment, Render, RenderError};
+use crate::render::{check_segment, Kernel, Render, RenderError};
 use crate::runs::{coverage_of, merge_runs, walk_runs, Background, Span};
 
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
@@ -107,12 +107,14 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         // scalar paths, frames without a normalized material get a general kernel that holds
         // only the classic models' code (see the kernel's module docs). The SIMD paths keep
         // one general kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
-        if self.narrow.is_some() {
-            self.shade_narrow_runs::<P, PLAIN>(out, run, &row, &spans, &runs);
-        } else if W::Lane::LANES > 1 || self.normalized {
-            self.shade_runs::<P, true, PLAIN>(out, run, &row, &spans, &runs);
-        } else {
-            self.shade_runs::<P, false, PLAIN>(out, run, &row, &spans, &runs);
+        match self.kernel {
+            Kernel::Narrow => self.shade_narrow_runs::<P, PLAIN>(out, run, &row, &spans, &runs),
+            Kernel::General { .. } if W::Lane::LANES > 1 || self.normalized => {
+                self.shade_runs::<P, true, PLAIN>(out, run, &row, &spans, &runs)
+            }
+            Kernel::General { .. } => {
+                self.shade_runs::<P, false, PLAIN>(out, run, &row, &spans, &runs)
+            }
         }
     }
 }

@@ -149,3 +149,20 @@ fn a_refused_prepare_leaves_the_frame_empty() {
     let mut line = [Rgb565::default(); 64];
     assert!(frame.render_line(0, &mut line).is_err());
 }
+
+/// The floor scene (classic spheres resting on a floor sphere, distant lights) is refused
+/// for the floor under the spheres resting on it: the item and field a build with
+/// `full-width` gives as the reason for its full-width kernel (`PreparedFixed::kernel`,
+/// `tests/kernel_choice.rs`).
+#[test]
+fn the_floor_scene_is_refused_for_its_floor() {
+    let scene = shadeline::floor().unwrap();
+    let (w, h) = shadeline::MATRIX_SIZE;
+    assert_eq!(
+        PreparedFixed::new(&scene, w, h).err(),
+        Some(RenderError::NeedsFullWidth {
+            item: Item::Sphere(0),
+            field: "center"
+        })
+    );
+}

@@ -1,0 +1,105 @@
+//! The kernel each path chooses for a frame (`Prepared::kernel`, `PreparedFixed::kernel`),
+//! and the reason it gives when the frame needs the slower one: the float paths agree at
+//! every width, the reason names an item the scene has and the first one that keeps the
+//! frame from the narrow kernel, and the scenes a user draws first get the reasons below.
+
+use crate::common;
+use shadeline::*;
+
+/// Every path's kernel for `scene` at `w × h`: scalar, simd4, simd8, fixed.
+fn kernels<const S: usize, const L: usize>(scene: &Scene<S, L>, w: u32, h: u32) -> [Kernel; 4] {
+    [
+        Prepared::<Scalar, S, L>::new(scene, w, h).unwrap().kernel(),
+        Prepared::<Simd4, S, L>::new(scene, w, h).unwrap().kernel(),
+        Prepared::<Simd8, S, L>::new(scene, w, h).unwrap().kernel(),
+        PreparedFixed::<S, L>::new(scene, w, h).unwrap().kernel(),
+    ]
+}
+
+/// The reason names an existing item, with a field the docs list.
+fn assert_reason_exists<const S: usize, const L: usize>(scene: &Scene<S, L>, kernel: Kernel) {
+    if let Kernel::General { item, field } = kernel {
+        match item {
+            Item::Sphere(i) => assert!(i < scene.spheres().len(), "{kernel}"),
+            Item::Light(i) => assert!(i < scene.lights().len(), "{kernel}"),
+            Item::Camera => {}
+            Item::Background => panic!("the background never keeps a frame from a kernel"),
+        }
+        let fields = ["type", "model", "shininess", "vfov", "center", "radius"];
+        assert!(fields.contains(&field), "{kernel}");
+    }
+}
+
+#[test]
+fn the_float_widths_agree_and_every_reason_names_an_item() {
+    let scenes = common::random_scenes_all_models(32, 0x6b65_726e);
+    let mut general = 0;
+    for (n, scene) in scenes.iter().enumerate() {
+        let scalar = Prepared::<Scalar, 8, 4>::new(scene, 48, 32)
+            .unwrap()
+            .kernel();
+        let simd4 = Prepared::<Simd4, 8, 4>::new(scene, 48, 32)
+            .unwrap()
+            .kernel();
+        let simd8 = Prepared::<Simd8, 8, 4>::new(scene, 48, 32)
+            .unwrap()
+            .kernel();
+        assert_eq!(simd4, scalar, "random scene {n}");
+        assert_eq!(simd8, scalar, "random scene {n}");
+        assert_reason_exists(scene, scalar);
+        // The fixed path may refuse a random scene (a number out of its formats).
+        if let Ok(fixed) = PreparedFixed::<8, 4>::new(scene, 48, 32) {
+            assert_reason_exists(scene, fixed.kernel());
+        }
+        general += usize::from(scalar != Kernel::Narrow);
+    }
+    assert!(general > 0, "no random scene needed the general kernel");
+}
+
+#[test]
+fn the_exponent_series_takes_the_narrow_kernel_on_every_path() {
+    let scene = exponent_series().unwrap();
+    assert_eq!(kernels(&scene, 320, 240), [Kernel::Narrow; 4]);
+}
+
+#[test]
+fn the_first_point_light_or_normalized_sphere_is_named() {
+    // One point light: every path names it, whichever the materials.
+    let point = Kernel::General {
+        item: Item::Light(0),
+        field: "type",
+    };
+    for scene in [lamp().unwrap(), three_lights().unwrap()] {
+        assert_eq!(kernels(&scene, 320, 240), [point; 4]);
+    }
+    // Distant lights only: the first sphere that is not classic.
+    let scene = materials().unwrap();
+    let first = scene
+        .spheres()
+        .iter()
+        .position(|s| !s.material.model.is_classic())
+        .expect("the gallery has normalized spheres");
+    let model = Kernel::General {
+        item: Item::Sphere(first),
+        field: "model",
+    };
+    assert_eq!(kernels(&scene, 160, 90), [model; 4]);
+}
+
+#[test]
+fn spheres_resting_on_a_floor_keep_the_fixed_path_from_its_narrow_kernel() {
+    // The float narrow kernel takes the floor scene; the fixed one does not take a sphere
+    // within 4ε of its casters (the floor under the spheres resting on it). A build without
+    // `full-width` refuses the frame with the same item and field
+    // (`checks/no-models/tests/narrow_only.rs`).
+    let [scalar, simd4, simd8, fixed] = kernels(&floor().unwrap(), 320, 240);
+    assert_eq!([scalar, simd4, simd8], [Kernel::Narrow; 3]);
+    assert_eq!(
+        fixed,
+        Kernel::General {
+            item: Item::Sphere(0),
+            field: "center"
+        }
+    );
+    assert_eq!(fixed.to_string(), "general, for sphere 0: `center`");
+}
