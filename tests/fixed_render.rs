@@ -260,7 +260,8 @@ fn prepared_in_place_is_the_same_frame_and_an_error_leaves_it_empty() {
         small.prepare(&tiny, 32, 32),
         Err(RenderError::OutOfFixedRange {
             item: Item::Sphere(1),
-            field: "radius"
+            field: "radius",
+            beside: Some(Item::Camera),
         })
     );
     let mut row = [Rgb565::default(); 32];
@@ -297,7 +298,7 @@ fn camera() -> Camera {
 
 fn refused(scene: &Scene<4, 2>, w: u32, h: u32) -> Option<(Item, &'static str)> {
     match PreparedFixed::new(scene, w, h) {
-        Err(RenderError::OutOfFixedRange { item, field }) => Some((item, field)),
+        Err(RenderError::OutOfFixedRange { item, field, .. }) => Some((item, field)),
         Err(e) => panic!("unexpected error {e}"),
         Ok(_) => None,
     }
@@ -435,11 +436,51 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
     let e = RenderError::OutOfFixedRange {
         item: Item::Sphere(3),
         field: "radius",
+        beside: None,
     };
     assert_eq!(
         e.to_string(),
         "sphere 3: `radius` does not fit the fixed-point path's number formats"
     );
+}
+
+/// A floor sphere of radius 10,000 under spheres of radius 1: the refusal names the small
+/// sphere and the floor that sets the scene's extent, and says what to change; a floor of
+/// radius 1,000 renders.
+#[test]
+fn a_huge_floor_is_named_in_the_refusal() {
+    let on_floor = |floor: f32| {
+        let mut s: Scene<4, 2> = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+        s.add_sphere(Sphere {
+            center: Vec3::new(0.0, -floor, 0.0),
+            radius: floor,
+            material: Material::default(),
+        })
+        .unwrap();
+        s.add_sphere(Sphere {
+            center: Vec3::new(0.0, 1.0, 0.0),
+            radius: 1.0,
+            material: Material::default(),
+        })
+        .unwrap();
+        s
+    };
+    let e = PreparedFixed::new(&on_floor(10_000.0), 32, 24).unwrap_err();
+    assert_eq!(
+        e,
+        RenderError::OutOfFixedRange {
+            item: Item::Sphere(1),
+            field: "radius",
+            beside: Some(Item::Sphere(0)),
+        }
+    );
+    let text = e.to_string();
+    assert!(
+        text.starts_with("sphere 1: `radius`") && text.contains("which sphere 0 sets"),
+        "{text}"
+    );
+    assert!(text.contains("make sphere 0 smaller"), "{text}");
+    assert!(PreparedFixed::new(&on_floor(1_000.0), 32, 24).is_ok());
 }
 
 /// `scene` in units `2^j` times as large: every coordinate and radius scaled, point lights'
