@@ -289,7 +289,6 @@ fn render(
     let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
     let frame = (path.prepare)(&file.scene, file.width, file.height, input.options(&file))
         .map_err(|e| Failure::input(format!("error: {e}")))?;
-    println!("{}", paths::kernel_line(path.name, frame.kernel()));
     let png = open_output(output)?;
     let mut rgb =
         new_frame(file.width, file.height).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
@@ -321,6 +320,7 @@ fn render(
         megapixels / median,
         output.display()
     );
+    println!("{}", paths::kernel_line(path.name, frame.kernel()));
     Ok(())
 }
 

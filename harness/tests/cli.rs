@@ -273,6 +273,8 @@ fn render_uses_the_widest_simd_path_unless_told_otherwise() {
     };
     let default = run(&["-o", "default.png"]);
     assert!(default.starts_with("40x30 simd8 "), "{default}");
+    // The kernel the path takes: the exponent series is the narrow kernel's.
+    assert!(default.contains("simd8    kernel: narrow"), "{default}");
     let scalar = run(&["--path", "scalar", "-o", "scalar.png"]);
     assert!(scalar.starts_with("40x30 scalar "), "{scalar}");
     // The same bits either way.
@@ -341,6 +343,15 @@ fn compare_prints_one_row_per_path_and_writes_the_picture() {
             stdout
                 .lines()
                 .any(|l| l.starts_with(path) && l.contains("dB")),
+            "{stdout}"
+        );
+    }
+    // The kernel each path takes, with its reason where it is not the narrow one.
+    for path in paths {
+        assert!(
+            stdout
+                .lines()
+                .any(|l| l.starts_with(path) && l.contains("kernel: narrow")),
             "{stdout}"
         );
     }
@@ -429,5 +440,23 @@ fn antialias_smooths_every_path() {
         read_png(&dir.join("fixed-sharp.png")).4,
         read_png(&dir.join("fixed-smooth.png")).4,
         "--antialias changed no pixel of the fixed frame"
+    );
+}
+
+#[test]
+fn render_names_the_kernel_and_why() {
+    let dir = temp_dir("kernel");
+    let out = shadeline(
+        &[
+            "render", "--preset", "lamp", "--width", "32", "--height", "24", "--path", "fixed",
+            "--repeat", "1", "-o", "lamp.png",
+        ],
+        &dir,
+    );
+    assert!(out.status.success(), "{}", stderr(&out));
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        stdout.contains("fixed    kernel: full-width, because of light 0: `type`"),
+        "{stdout}"
     );
 }
