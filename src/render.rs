@@ -78,11 +78,11 @@ pub enum RenderError {
         item: Item,
         /// The field's name, as spelled in the scene file.
         field: &'static str,
-        /// For a sphere's `radius` below `2⁻¹³` of the scene's extent: the item that sets
-        /// the extent (the one reaching farthest from the origin, such as a floor sphere),
-        /// which shrinking would let the sphere fit. `None` for a number out of range on
-        /// its own.
-        beside: Option<Item>,
+        /// For a sphere's `radius` below `2⁻¹³` of the scene's extent: the index of the
+        /// scene's largest sphere (a floor sphere, say), when its size sets the extent, which
+        /// shrinking would let the small one fit. `None` for a number out of range on its
+        /// own, or when the camera's distance sets the extent.
+        beside: Option<u16>,
     },
     /// A point light has a radius (a sphere light), and this build renders point lights of
     /// radius 0 only on this path: the fixed path with the crate feature `area-lights` but
@@ -137,22 +137,12 @@ impl fmt::Display for RenderError {
             RenderError::OutOfFixedRange {
                 item,
                 field,
-                beside: Some(Item::Camera),
-            } => write!(
-                f,
-                "{item}: `{field}` is below 1/8192 of the scene's extent, which the camera's \
-                 distance from the origin sets, and does not fit the fixed-point path's number \
-                 formats beside it: bring the camera closer to the origin or make {item} larger"
-            ),
-            RenderError::OutOfFixedRange {
-                item,
-                field,
                 beside: Some(large),
             } => write!(
                 f,
-                "{item}: `{field}` is below 1/8192 of the scene's extent, which {large} sets, \
-                 and does not fit the fixed-point path's number formats beside it: make {large} \
-                 smaller (a floor sphere 1,000 times the radius of the spheres on it looks as \
+                "{item}: `{field}` is below 1/8192 of the scene's extent, which sphere {large} \
+                 sets, and does not fit the fixed-point path's number formats beside it: make \
+                 sphere {large} smaller (a floor sphere 1,000 times the radius of the spheres on it looks as \
                  flat as one 10,000 times) or {item} larger"
             ),
             RenderError::OutOfFixedRange { item, field, .. } => write!(

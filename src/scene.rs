@@ -1150,25 +1150,6 @@ impl<const S: usize, const L: usize> Scene<S, L> {
     /// point light. [`Self::ray_epsilon`] and the fixed path's scale both start from it; one
     /// copy, out of line, for a firmware's flash.
     #[inline(never)]
-    /// The item that sets [`Self::extent`]: the first that reaches farthest.
-    pub(crate) fn extent_item(&self) -> Item {
-        let mut far = (self.camera.position.max_abs(), Item::Camera);
-        for (i, s) in self.spheres.iter().enumerate() {
-            let reach = s.center.max_abs() + s.radius;
-            if reach > far.0 {
-                far = (reach, Item::Sphere(i));
-            }
-        }
-        for (i, l) in self.lights.iter().enumerate() {
-            if let Light::Point { position, .. } = l {
-                if position.max_abs() > far.0 {
-                    far = (position.max_abs(), Item::Light(i));
-                }
-            }
-        }
-        far.1
-    }
-
     pub(crate) fn extent(&self) -> f32 {
         let mut extent = self.camera.position.max_abs();
         for s in &self.spheres {

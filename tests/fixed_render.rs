@@ -261,7 +261,7 @@ fn prepared_in_place_is_the_same_frame_and_an_error_leaves_it_empty() {
         Err(RenderError::OutOfFixedRange {
             item: Item::Sphere(1),
             field: "radius",
-            beside: Some(Item::Camera),
+            beside: None,
         })
     );
     let mut row = [Rgb565::default(); 32];
@@ -471,7 +471,7 @@ fn a_huge_floor_is_named_in_the_refusal() {
         RenderError::OutOfFixedRange {
             item: Item::Sphere(1),
             field: "radius",
-            beside: Some(Item::Sphere(0)),
+            beside: Some(0),
         }
     );
     let text = e.to_string();

@@ -455,19 +455,33 @@ fn out_of_range(item: Item, field: &'static str) -> RenderError {
     }
 }
 
-/// The refusal of sphere `item`, whose radius is below `2⁻¹³` of the scene's extent: it names
-/// the item that sets the extent too, unless that is the sphere itself. Out of line: only
-/// refused scenes reach it.
+/// The refusal of sphere `sphere`, whose radius is below `2⁻¹³` of the scene's extent: it also
+/// names the largest sphere (a floor sphere, say) when that is another and reaches at least
+/// half as far as the camera, so that its size is what sets the extent. In integers: a
+/// finite `f32`'s magnitude orders as its bits, and doubling it adds `2²³` to them. Out of
+/// line: only refused scenes reach it.
 #[inline(never)]
 fn small_beside_extent<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
-    item: Item,
+    sphere: usize,
 ) -> RenderError {
-    let large = scene.extent_item();
+    let magnitude = |v: f32| v.to_bits() & 0x7fff_ffff;
+    let eye = scene.camera().position;
+    let camera = magnitude(eye.x).max(magnitude(eye.y)).max(magnitude(eye.z));
+    let (mut largest, mut beside) = (0, None);
+    for (i, s) in scene.spheres().iter().enumerate() {
+        if magnitude(s.radius) > largest {
+            largest = magnitude(s.radius);
+            beside = u16::try_from(i).ok();
+        }
+    }
+    if beside.map(usize::from) == Some(sphere) || largest + (1 << 23) < camera {
+        beside = None;
+    }
     RenderError::OutOfFixedRange {
-        item,
+        item: Item::Sphere(sphere),
         field: "radius",
-        beside: (large != item).then_some(large),
+        beside,
     }
 }
 
@@ -707,7 +721,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .map(Len::from_bits)
                 .ok_or(out_of_range(item, "radius"))?;
             if radius < MIN_SCALED_RADIUS {
-                return Err(small_beside_extent(scene, item));
+                return Err(small_beside_extent(scene, i));
             }
             let radius_raw = radius.to_bits() as i64;
             #[cfg(feature = "full-width")]
