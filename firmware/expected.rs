@@ -88,3 +88,19 @@ pub const AREA_LIGHTS_FIXED_POINT_RGB565_CRC32: u32 = 0x160d_f62c;
 /// Pixels of either frame whose primary ray hits a sphere (the light's size changes no
 /// primary ray).
 pub const AREA_LIGHTS_COVERED: u64 = 36_588;
+
+/// CRC32s (scalar, fixed) of the scene matrix at `shadeline::MATRIX_SIZE` (320×240) in
+/// `Rgb565`: `shadeline::floor`, `shadeline::lamp` and `shadeline::three_lights`, in that
+/// order, rendered by `Prepared::<Scalar, 6, 3>` and by `PreparedFixed::<6, 3>`: the
+/// firmware's `scalar-<scene>` runs (the M4F's, with `VSQRT.F32`) and `fixed-<scene>` runs
+/// (feature `matrix`, which turns on the fixed path's `full-width` kernel).
+pub const MATRIX_RGB565_CRC32: [[u32; 2]; 3] = [
+    [0xe45b_8b57, 0x9cd7_1415],
+    [0x1500_ec46, 0xe73d_e61c],
+    [0x7c40_2ce9, 0xa48b_e1b1],
+];
+/// Pixels of each matrix frame whose primary ray hits a sphere on the scalar path (the three
+/// scenes share their spheres and camera).
+pub const MATRIX_SCALAR_COVERED: u64 = 50_132;
+/// Pixels of each matrix frame whose primary ray hits a sphere on the fixed path.
+pub const MATRIX_FIXED_COVERED: u64 = 50_132;

@@ -218,3 +218,60 @@ fn per_model_crcs_and_covered_counts_match_the_firmware_constants() {
         );
     }
 }
+
+/// The scene matrix's scenes, in the order of `expected::MATRIX_RGB565_CRC32`.
+#[cfg(feature = "blinn-phong")]
+fn matrix_scenes() -> [shadeline::MatrixScene; 3] {
+    [
+        shadeline::floor(),
+        shadeline::lamp(),
+        shadeline::three_lights(),
+    ]
+    .map(|scene| scene.expect("built-in scene is valid"))
+}
+
+#[cfg(feature = "blinn-phong")]
+#[test]
+fn matrix_scalar_crcs_and_covered_counts_match_the_firmware_constants() {
+    let (w, h) = shadeline::MATRIX_SIZE;
+    let found = matrix_scenes().map(|scene| {
+        let path = Prepared::<Scalar, 6, 3>::new(&scene, w, h).unwrap();
+        (rgb565_crc32(&frame(&path)), covered(&path))
+    });
+    let crcs = found.map(|(crc, _)| crc);
+    assert_eq!(
+        crcs,
+        expected::MATRIX_RGB565_CRC32.map(|[scalar, _]| scalar),
+        "host scalar CRCs of the matrix (floor, lamp, three-lights) {crcs:#010x?}: update \
+         firmware/expected.rs"
+    );
+    assert_eq!(
+        found.map(|(_, hits)| hits),
+        [expected::MATRIX_SCALAR_COVERED; 3],
+        "host scalar covered counts of the matrix (floor, lamp, three-lights): update \
+         firmware/expected.rs"
+    );
+}
+
+#[cfg(all(feature = "blinn-phong", feature = "full-width"))]
+#[test]
+fn matrix_fixed_crcs_and_covered_counts_match_the_firmware_constants() {
+    let (w, h) = shadeline::MATRIX_SIZE;
+    let found = matrix_scenes().map(|scene| {
+        let path = PreparedFixed::<6, 3>::new(&scene, w, h).unwrap();
+        (rgb565_crc32(&frame(&path)), covered(&path))
+    });
+    let crcs = found.map(|(crc, _)| crc);
+    assert_eq!(
+        crcs,
+        expected::MATRIX_RGB565_CRC32.map(|[_, fixed]| fixed),
+        "host fixed CRCs of the matrix (floor, lamp, three-lights) {crcs:#010x?}: update \
+         firmware/expected.rs"
+    );
+    assert_eq!(
+        found.map(|(_, hits)| hits),
+        [expected::MATRIX_FIXED_COVERED; 3],
+        "host fixed covered counts of the matrix (floor, lamp, three-lights): update \
+         firmware/expected.rs"
+    );
+}

@@ -8,6 +8,7 @@
 //! | [`stack`] | painting the free stack and finding the deepest word the render touched |
 //! | [`meter`] | instruction counting with the counter's own cost calibrated out |
 //! | [`run`] | one path end to end: build in place, prepare and render measured, CRC, report |
+//! | [`matrix`] | the scene matrix (`floor`, `lamp`, `three-lights`) on the fixed and scalar paths |
 //! | `cortex_m_board` | SysTick counter, semihosting, stack limits (Cortex-M targets only) |
 //! | [`expected`] | the frame size and the CRCs to match (`firmware/expected.rs`) |
 //!
@@ -19,6 +20,8 @@
 #[cfg(target_arch = "arm")]
 pub mod cortex_m_board;
 pub mod crc32;
+pub mod kernel;
+pub mod matrix;
 pub mod meter;
 mod panic_proof;
 pub mod run;
@@ -30,5 +33,6 @@ pub mod expected {
     include!("../../expected.rs");
 }
 
+pub use matrix::{MatrixFixed, MatrixPrepared, MATRIX_LIGHTS, MATRIX_SPHERES};
 pub use meter::{InstructionCounter, Meter};
 pub use run::{Board, Expected, Outcome, Session, Sink};

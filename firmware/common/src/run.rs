@@ -34,6 +34,7 @@
 //! ```
 
 use crate::crc32::Crc32;
+use crate::kernel::{self, ChoosesKernel};
 use crate::meter::{InstructionCounter, Meter};
 use crate::stack;
 use crate::text::Line;
@@ -185,7 +186,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
     /// [`Session::build`], then [`Session::run`] on what it built: a path prepared by `make`
     /// into `slot`, rendered into `sink` and reported as `path_name`. A prepare that fails
     /// is reported as `error=prepare-<path_name>` and fails the session.
-    pub fn build_and_run<R: Render, E>(
+    pub fn build_and_run<R: Render + ChoosesKernel, E>(
         &mut self,
         path_name: &str,
         slot: &mut Option<R>,
@@ -206,7 +207,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
 
     /// Renders `path` into `sink`, measures it and reports it against `expected`, with
     /// `prepare` (from [`Session::build`]) as the instructions of its prepare.
-    pub fn run<R: Render>(
+    pub fn run<R: Render + ChoosesKernel>(
         &mut self,
         path_name: &str,
         path: &R,
@@ -270,6 +271,15 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         line.field("stack", figures.stack as u64)
             .field("render_stack", figures.render_stack as u64)
             .byte(b'\n');
+        self.board.write(line.as_bytes());
+        // The kernel on a line of its own, after the figures, in the same buffer.
+        line = Line::new();
+        line.str("shadeline-fw firmware=")
+            .str(board_name)
+            .str(" path=")
+            .str(path_name);
+        kernel::report(&mut line, path.kernel());
+        line.byte(b'\n');
         self.board.write(line.as_bytes());
     }
 

@@ -13,7 +13,9 @@
 //! frame with the fixed path's analytic anti-aliasing (`fixed-aa`), in the same buffers;
 //! with `area-lights`, the area-lights preset at 320×160 under its sphere light and under a
 //! point light at the same place (`fixed-sphere-light`, `fixed-point-light`), in the same
-//! buffers too (the preset's capacities are the exponent series').
+//! buffers too (the preset's capacities are the exponent series'); with `matrix`, the scene
+//! matrix at 320×240 (`fixed-floor`, `fixed-lamp`, `fixed-three-lights`), in the same
+//! buffers, which then take the matrix's capacities.
 //!
 //! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -33,8 +35,17 @@ const HCLK_HZ: u32 = 16_000_000;
 
 /// The scene's capacities: the exponent series' 5 spheres and 1 light, rather than the
 /// default 16 and 8, so the scene and its prepared frame take a third of the RAM.
+#[cfg(not(feature = "matrix"))]
 const SPHERES: usize = 5;
+#[cfg(not(feature = "matrix"))]
 const LIGHTS: usize = 1;
+/// With the feature `matrix`, the scene matrix's 6 spheres and 3 lights: the exponent series
+/// and the matrix share the scene, the prepared frame and one copy of the renderer, as a
+/// user's firmware drawing the matrix's scenes would.
+#[cfg(feature = "matrix")]
+const SPHERES: usize = common::MATRIX_SPHERES;
+#[cfg(feature = "matrix")]
+const LIGHTS: usize = common::MATRIX_LIGHTS;
 
 #[entry]
 fn main() -> ! {
@@ -42,6 +53,11 @@ fn main() -> ! {
     static mut LINE: [Rgb565; WIDTH as usize] = [Rgb565(0); WIDTH as usize];
     static mut SCENE: Option<Scene<SPHERES, LIGHTS>> = None;
     static mut FIXED: PreparedFixed<SPHERES, LIGHTS> = PreparedFixed::EMPTY;
+    // The area-lights preset's own capacities, when the matrix's are the scene's.
+    #[cfg(all(feature = "area-lights", feature = "matrix"))]
+    static mut AREA_SCENE: Option<Scene<5, 1>> = None;
+    #[cfg(all(feature = "area-lights", feature = "matrix"))]
+    static mut AREA_FIXED: PreparedFixed<5, 1> = PreparedFixed::EMPTY;
 
     let board = CortexMBoard::new("m0");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -91,7 +107,11 @@ fn main() -> ! {
             session.fail();
         }
     }
-    #[cfg(feature = "area-lights")]
+    #[cfg(all(feature = "area-lights", not(feature = "matrix")))]
     session.fixed_area_lights(&mut *SCENE, &mut *FIXED, &mut LINE[..], true);
+    #[cfg(all(feature = "area-lights", feature = "matrix"))]
+    session.fixed_area_lights(AREA_SCENE, AREA_FIXED, &mut LINE[..], true);
+    #[cfg(feature = "matrix")]
+    session.fixed_matrix(&mut *SCENE, &mut *FIXED, &mut LINE[..], true);
     exit(session.finish() == Outcome::Pass)
 }

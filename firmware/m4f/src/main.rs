@@ -15,7 +15,9 @@
 //! Blinn-Phong), … `fixed-ggx-gold`); with the feature `area-lights`, it also renders the
 //! area-lights preset on the scalar and the fixed path under its sphere light and under a
 //! point light at the same place (`scalar-sphere-light`, `scalar-point-light`,
-//! `fixed-sphere-light`, `fixed-point-light`).
+//! `fixed-sphere-light`, `fixed-point-light`); with the feature `matrix`, it also renders the
+//! scene matrix (`shadeline::floor`, `lamp`, `three_lights`) on the scalar path with
+//! `VSQRT.F32` and on the fixed path (`scalar-floor`, …, `fixed-three-lights`).
 //!
 //! Run with `cargo m4f` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -124,6 +126,12 @@ fn main() -> ! {
     static mut POINT: Option<Prepared<M4fScalar, 5, 1>> = None;
     #[cfg(feature = "area-lights")]
     static mut AREA_FIXED: PreparedFixed<5, 1> = PreparedFixed::EMPTY;
+    #[cfg(feature = "matrix")]
+    static mut MATRIX_SCENE: Option<shadeline::MatrixScene> = None;
+    #[cfg(feature = "matrix")]
+    static mut MATRIX_SCALAR: Option<common::MatrixPrepared<M4fScalar>> = None;
+    #[cfg(feature = "matrix")]
+    static mut MATRIX_FIXED: common::MatrixFixed = PreparedFixed::EMPTY;
 
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -339,6 +347,11 @@ fn main() -> ! {
             session.note("shadeline-fw error=prepare-fixed-aa\n");
             session.fail();
         }
+    }
+    #[cfg(feature = "matrix")]
+    {
+        session.scalar_matrix(MATRIX_SCENE, MATRIX_SCALAR, &mut FRAME[..]);
+        session.fixed_matrix(MATRIX_SCENE, MATRIX_FIXED, &mut FRAME[..], false);
     }
     exit(session.finish() == Outcome::Pass)
 }

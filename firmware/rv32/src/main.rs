@@ -5,7 +5,8 @@
 //! stack high-water mark; exits 0 only if both CRCs match. With the feature `area-lights`
 //! it also renders the area-lights preset at 320×160 on the fixed path, under its sphere
 //! light and under a point light at the same place (`fixed-sphere-light`,
-//! `fixed-point-light`).
+//! `fixed-point-light`); with the feature `matrix`, the scene matrix at 320×240 on the fixed
+//! path (`fixed-floor`, `fixed-lamp`, `fixed-three-lights`).
 //!
 //! Run with `cargo rv32` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -84,6 +85,11 @@ fn main() -> ! {
     {
         let (mut scene, mut fixed) = (None, PreparedFixed::<5, 1>::EMPTY);
         session.fixed_area_lights(&mut scene, &mut fixed, &mut frame[..], false);
+    }
+    #[cfg(feature = "matrix")]
+    {
+        let (mut scene, mut fixed) = (None, common::MatrixFixed::EMPTY);
+        session.fixed_matrix(&mut scene, &mut fixed, &mut frame[..], false);
     }
     exit(session.finish() == Outcome::Pass)
 }
