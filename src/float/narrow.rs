@@ -705,7 +705,13 @@ mod tests {
                 continue;
             }
             narrow_frames += 1;
+            // The same frame through the general kernel: the row driver dispatches on
+            // `kernel`, and the narrow constants go with it.
             let mut general = narrow.clone();
+            general.kernel = crate::Kernel::General {
+                item: crate::Item::Camera,
+                field: "vfov",
+            };
             general.narrow = None;
             let (ha, hb): (Vec<HitRecord>, Vec<HitRecord>) = (frame(&narrow), frame(&general));
             let (qa, qb): (Vec<Rgb888>, Vec<Rgb888>) = (frame(&narrow), frame(&general));
