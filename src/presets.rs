@@ -571,6 +571,27 @@ const FILL: Light = Light::Distant {
     intensity: 0.5,
 };
 
+/// Adds the matrix's four spheres of `materials`, left to right, resting on its floor.
+fn rest_on_floor(scene: &mut MatrixScene, materials: [Material; 4]) -> Result<(), SceneError> {
+    for (&(x, y), material) in RESTING.iter().zip(materials) {
+        scene.add_sphere(Sphere {
+            center: Vec3::new(x, y, 0.0),
+            radius: MATRIX_SPHERE_RADIUS,
+            material,
+        })?;
+    }
+    Ok(())
+}
+
+/// The colours and specular exponents of the matrix's four spheres in [`floor`] and
+/// [`lamp`], left to right.
+const SERIES: [(LinearRgb, f32); 4] = [
+    (ALBEDOS[0], 10.0),
+    (ALBEDOS[1], 40.0),
+    (ALBEDOS[2], 150.0),
+    (ALBEDOS[3], 600.0),
+];
+
 /// The colours of the matrix's four spheres, left to right.
 const ALBEDOS: [LinearRgb; 4] = [
     LinearRgb::new(0.7, 0.12, 0.1),
@@ -594,19 +615,16 @@ pub fn floor() -> Result<MatrixScene, SceneError> {
         shininess: 8.0,
         model: Model::Phong,
     }))?;
-    for ((&(x, y), albedo), n) in RESTING.iter().zip(ALBEDOS).zip([10.0, 40.0, 150.0, 600.0]) {
-        scene.add_sphere(Sphere {
-            center: Vec3::new(x, y, 0.0),
-            radius: MATRIX_SPHERE_RADIUS,
-            material: Material {
-                albedo,
-                kd: 0.7,
-                ks: 0.3,
-                shininess: n,
-                model: Model::Phong,
-            },
-        })?;
-    }
+    rest_on_floor(
+        &mut scene,
+        SERIES.map(|(albedo, shininess)| Material {
+            albedo,
+            kd: 0.7,
+            ks: 0.3,
+            shininess,
+            model: Model::Phong,
+        }),
+    )?;
     Ok(scene)
 }
 
@@ -637,19 +655,16 @@ pub fn lamp() -> Result<MatrixScene, SceneError> {
         surface: Surface::Dielectric { ior: Some(1.5) },
         ..Specular::default()
     });
-    for ((&(x, y), albedo), n) in RESTING.iter().zip(ALBEDOS).zip([10.0, 40.0, 150.0, 600.0]) {
-        scene.add_sphere(Sphere {
-            center: Vec3::new(x, y, 0.0),
-            radius: MATRIX_SPHERE_RADIUS,
-            material: Material {
-                albedo,
-                kd: 0.8,
-                ks: 0.2,
-                shininess: n,
-                model: plastic,
-            },
-        })?;
-    }
+    rest_on_floor(
+        &mut scene,
+        SERIES.map(|(albedo, shininess)| Material {
+            albedo,
+            kd: 0.8,
+            ks: 0.2,
+            shininess,
+            model: plastic,
+        }),
+    )?;
     Ok(scene)
 }
 
@@ -711,12 +726,6 @@ pub fn three_lights() -> Result<MatrixScene, SceneError> {
             )
         },
     ];
-    for (&(x, y), material) in RESTING.iter().zip(materials) {
-        scene.add_sphere(Sphere {
-            center: Vec3::new(x, y, 0.0),
-            radius: MATRIX_SPHERE_RADIUS,
-            material,
-        })?;
-    }
+    rest_on_floor(&mut scene, materials)?;
     Ok(scene)
 }

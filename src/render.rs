@@ -165,12 +165,11 @@ impl fmt::Display for RenderError {
 impl core::error::Error for RenderError {}
 
 /// The kernel a prepared frame's rows take: each path chooses it once per frame, in its
-/// prepare ([`Prepared::kernel`](crate::Prepared::kernel),
-/// [`PreparedFixed::kernel`](crate::PreparedFixed::kernel)), and its row driver dispatches on
-/// it with one `match`.
+/// prepare, says it through [`Render::kernel`], and its row driver dispatches on it with one
+/// `match`.
 ///
 /// ```
-/// use shadeline::{exponent_series, lamp, Item, Kernel, Prepared, Scalar};
+/// use shadeline::{exponent_series, lamp, Item, Kernel, Prepared, Render, Scalar};
 /// let series = Prepared::<Scalar, _, _>::new(&exponent_series()?, 64, 48)?;
 /// assert_eq!(series.kernel(), Kernel::Narrow);
 /// let lamp = Prepared::<Scalar, _, _>::new(&lamp()?, 64, 48)?;
@@ -221,6 +220,9 @@ pub trait Render {
     fn width(&self) -> u32;
     /// The image height in pixels.
     fn height(&self) -> u32;
+    /// The kernel this frame's rows take, chosen once in the path's prepare, and why if it
+    /// is not the narrow one (see [`Kernel`]).
+    fn kernel(&self) -> Kernel;
 
     /// Shades pixels `x .. x + out.len()` of row `y` (0 = top) into `out`, with `encoding`
     /// instead of the frame's own. A pixel's value depends only on the frame, its `(x, y)` and
@@ -444,5 +446,9 @@ impl<R: Render> Render for Encoded<R> {
 
     fn row_coverage(&self, y: u32) -> Option<Span> {
         self.frame.row_coverage(y)
+    }
+
+    fn kernel(&self) -> Kernel {
+        self.frame.kernel()
     }
 }

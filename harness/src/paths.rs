@@ -26,27 +26,9 @@ pub trait Frame: Sync {
     fn kernel(&self) -> Kernel;
 }
 
-/// A prepared frame of one of the core's paths: each says which kernel its rows take.
-pub trait ChoosesKernel {
-    /// The path's own `kernel()`.
-    fn kernel(&self) -> Kernel;
-}
-
-impl<W: FloatPath, const S: usize, const L: usize> ChoosesKernel for Prepared<W, S, L> {
+impl<R: Render + Sync> Frame for R {
     fn kernel(&self) -> Kernel {
-        Prepared::kernel(self)
-    }
-}
-
-impl<const S: usize, const L: usize> ChoosesKernel for PreparedFixed<S, L> {
-    fn kernel(&self) -> Kernel {
-        PreparedFixed::kernel(self)
-    }
-}
-
-impl<R: Render + ChoosesKernel + Sync> Frame for R {
-    fn kernel(&self) -> Kernel {
-        ChoosesKernel::kernel(self)
+        Render::kernel(self)
     }
     fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, FrameError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
@@ -121,7 +103,7 @@ impl std::fmt::Debug for Path {
 }
 
 /// Boxes a prepared frame of any path.
-fn boxed<R: Render + ChoosesKernel + Sync + 'static>(
+fn boxed<R: Render + Sync + 'static>(
     frame: Result<R, RenderError>,
 ) -> Result<Box<dyn Frame>, PrepareError> {
     Ok(Box::new(frame?))

@@ -926,13 +926,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         Ok(())
     }
 
-    /// The kernel this frame's rows take, and why if it is not the narrow one: the first
-    /// light that is not distant, sphere with a normalized model (or Lambert, Oren–Nayar,
-    /// GGX), sphere the camera or a caster is close to or whose numbers do not fit the
-    /// narrow formats, or a field of view too wide for them (`vfov`). Without the feature
-    /// `full-width` it is always [`Kernel::Narrow`]: such a frame is refused instead
-    /// ([`RenderError::NeedsFullWidth`], with the same item and field).
-    pub fn kernel(&self) -> Kernel {
+    /// [`Render::kernel`](crate::Render::kernel) of this frame: without the feature
+    /// `full-width` always [`Kernel::Narrow`], every other frame being refused.
+    #[inline(always)]
+    pub(crate) fn chosen_kernel(&self) -> Kernel {
         #[cfg(feature = "full-width")]
         return self.kernel;
         #[cfg(not(feature = "full-width"))]

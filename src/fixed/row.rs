@@ -252,6 +252,16 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 }
 
 impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
+    /// The narrow kernel, or the full-width one because of the first light that is not
+    /// distant, sphere with a normalized model (or Lambert, Oren–Nayar, GGX), sphere the
+    /// camera or a caster is close to (`center`) or whose numbers do not fit the narrow
+    /// formats (`radius`), or a field of view too wide for them (`vfov`). Without the
+    /// feature `full-width` it is always [`Kernel::Narrow`]: such a frame is refused instead
+    /// ([`RenderError::NeedsFullWidth`], with the same item and field).
+    fn kernel(&self) -> Kernel {
+        self.chosen_kernel()
+    }
+
     fn width(&self) -> u32 {
         self.width
     }
@@ -322,7 +332,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let edges = self.antialias.then(|| self.edge_row(y));
         walk_runs(out, x as usize, runs, &background, |start, run_pixels| {
             let row = (y, &spans[..], encoding, &background);
-            match self.kernel() {
+            match self.chosen_kernel() {
                 Kernel::Narrow => {
                     self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels);
                 }

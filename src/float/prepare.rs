@@ -411,13 +411,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         Ok(frame)
     }
 
-    /// The kernel this frame's rows take, and why if it is not the narrow one: the first
-    /// light that is not distant, sphere whose model is not classic or whose highlight is
-    /// too sharp for the narrow kernel's `pow`, or sphere the camera is close to.
-    pub fn kernel(&self) -> Kernel {
-        self.kernel
-    }
-
     /// Sets up the narrow kernel (see `narrow`) if the frame meets its conditions: every
     /// light distant, every sphere classic with `ks·ΣI·n` within [`SHARPEST`], the camera
     /// clearly outside every sphere; otherwise names the first item and field that keeps the

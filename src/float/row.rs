@@ -49,6 +49,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 }
 
 impl<W: FloatPath, const S: usize, const L: usize> Render for Prepared<W, S, L> {
+    /// The narrow kernel, or the general one because of the first light that is not
+    /// distant, sphere whose model is not classic or whose highlight is too sharp for the
+    /// narrow kernel's `pow` (`shininess`), or sphere the camera is close to (`center`).
+    fn kernel(&self) -> Kernel {
+        self.kernel
+    }
+
     fn width(&self) -> u32 {
         self.width
     }

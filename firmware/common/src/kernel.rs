@@ -1,27 +1,8 @@
-//! The kernel a prepared frame's rows take, for the report line: every path the firmware
-//! runs says it (`Prepared::kernel`, `PreparedFixed::kernel`), and [`ChoosesKernel`] lets
-//! the generic report ask for it.
+//! The kernel a prepared frame's rows take, on the report: every path says it
+//! (`Render::kernel`), and [`report`] writes it without `core::fmt`.
 
 use crate::text::Line;
-use shadeline::{FloatPath, Item, Kernel, Prepared, PreparedFixed};
-
-/// A prepared frame that says which kernel its rows take.
-pub trait ChoosesKernel {
-    /// The path's own `kernel()`.
-    fn kernel(&self) -> Kernel;
-}
-
-impl<W: FloatPath, const S: usize, const L: usize> ChoosesKernel for Prepared<W, S, L> {
-    fn kernel(&self) -> Kernel {
-        Prepared::kernel(self)
-    }
-}
-
-impl<const S: usize, const L: usize> ChoosesKernel for PreparedFixed<S, L> {
-    fn kernel(&self) -> Kernel {
-        PreparedFixed::kernel(self)
-    }
-}
+use shadeline::{Item, Kernel};
 
 /// Appends ` kernel=narrow`, or ` kernel=general why=sphere0.model` (the item and field
 /// that keep the frame from the narrow kernel; on the fixed path the general kernel is the

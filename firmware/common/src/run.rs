@@ -34,7 +34,7 @@
 //! ```
 
 use crate::crc32::Crc32;
-use crate::kernel::{self, ChoosesKernel};
+use crate::kernel;
 use crate::meter::{InstructionCounter, Meter};
 use crate::stack;
 use crate::text::Line;
@@ -186,7 +186,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
     /// [`Session::build`], then [`Session::run`] on what it built: a path prepared by `make`
     /// into `slot`, rendered into `sink` and reported as `path_name`. A prepare that fails
     /// is reported as `error=prepare-<path_name>` and fails the session.
-    pub fn build_and_run<R: Render + ChoosesKernel, E>(
+    pub fn build_and_run<R: Render, E>(
         &mut self,
         path_name: &str,
         slot: &mut Option<R>,
@@ -207,7 +207,7 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
 
     /// Renders `path` into `sink`, measures it and reports it against `expected`, with
     /// `prepare` (from [`Session::build`]) as the instructions of its prepare.
-    pub fn run<R: Render + ChoosesKernel>(
+    pub fn run<R: Render>(
         &mut self,
         path_name: &str,
         path: &R,
