@@ -70,22 +70,13 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
                 self.prepare_failed(name);
                 continue;
             };
-            let pixels = if line { w } else { w * h } as usize;
-            let Some(out) = buffer.get_mut(..pixels) else {
-                self.note("shadeline-fw error=buffer-matrix\n");
-                self.fail();
-                return;
-            };
-            let sink = if line {
-                Sink::Line(out)
-            } else {
-                Sink::Frame(out)
-            };
             let expected = Expected {
                 crc,
                 covered: MATRIX_FIXED_COVERED,
             };
-            self.run(name, path, sink, prepare, expected);
+            if !self.run_in(name, path, (buffer, line), prepare, expected) {
+                return;
+            }
         }
     }
 
@@ -141,13 +132,5 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
             self.fail();
         }
         built
-    }
-
-    /// Reports `error=prepare-<name>` and fails the session.
-    fn prepare_failed(&mut self, name: &str) {
-        self.note("shadeline-fw error=prepare-");
-        self.note(name);
-        self.note("\n");
-        self.fail();
     }
 }

@@ -323,29 +323,53 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
             };
             let (Some(path), prepare) = self.build_in(&mut *fixed, |f| f.prepare(built, w, h))
             else {
-                self.note("shadeline-fw error=prepare-");
-                self.note(name);
-                self.note("\n");
-                self.fail();
+                self.prepare_failed(name);
                 continue;
-            };
-            let pixels = if line { w } else { w * h } as usize;
-            let Some(out) = buffer.get_mut(..pixels) else {
-                self.note("shadeline-fw error=buffer-area-lights\n");
-                self.fail();
-                return;
-            };
-            let sink = if line {
-                Sink::Line(out)
-            } else {
-                Sink::Frame(out)
             };
             let expected = Expected {
                 crc,
                 covered: AREA_LIGHTS_COVERED,
             };
-            self.run(name, path, sink, prepare, expected);
+            if !self.run_in(name, path, (buffer, line), prepare, expected) {
+                return;
+            }
         }
+    }
+
+    /// [`Self::run`] into the first row (`line`) or the whole frame of `buffer`; `false`
+    /// (reported, and the session failed) if `buffer` is too small for it.
+    pub(crate) fn run_in<R: Render>(
+        &mut self,
+        name: &str,
+        path: &R,
+        (buffer, line): (&mut [Rgb565], bool),
+        prepare: Option<u64>,
+        expected: Expected,
+    ) -> bool {
+        let (w, h) = (path.width(), path.height());
+        let pixels = if line { w } else { w * h } as usize;
+        let Some(out) = buffer.get_mut(..pixels) else {
+            self.note("shadeline-fw error=buffer-");
+            self.note(name);
+            self.note("\n");
+            self.fail();
+            return false;
+        };
+        let sink = if line {
+            Sink::Line(out)
+        } else {
+            Sink::Frame(out)
+        };
+        self.run(name, path, sink, prepare, expected);
+        true
+    }
+
+    /// Reports `error=prepare-<name>` and fails the session.
+    pub(crate) fn prepare_failed(&mut self, name: &str) {
+        self.note("shadeline-fw error=prepare-");
+        self.note(name);
+        self.note("\n");
+        self.fail();
     }
 
     /// Reports the verdict and the deepest stack of the session; returns the verdict.
