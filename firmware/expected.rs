@@ -95,7 +95,7 @@ pub const AREA_LIGHTS_COVERED: u64 = 36_588;
 /// firmware's `scalar-<scene>` runs (the M4F's, with `VSQRT.F32`) and `fixed-<scene>` runs
 /// (feature `matrix`, which turns on the fixed path's `full-width` kernel).
 pub const MATRIX_RGB565_CRC32: [[u32; 2]; 3] = [
-    [0xe45b_8b57, 0x9cd7_1415],
+    [0xe45b_8b57, 0xb6e6_70bd],
     [0x1500_ec46, 0xe73d_e61c],
     [0x7c40_2ce9, 0xa48b_e1b1],
 ];

@@ -96,7 +96,7 @@ pub enum RenderError {
     /// The frame needs the fixed path's full-width kernel, which this build leaves out
     /// (crate feature `full-width`): the narrow kernel takes distant lights and the classic
     /// models only, a field of view up to about 90° on the diagonal, and spheres the camera
-    /// is clearly outside of and more than `4ε` from their casters (see [`crate::fixed`]);
+    /// is clearly outside of (see [`crate::fixed`]);
     /// only [`PreparedFixed::new`](crate::PreparedFixed::new) returns it.
     NeedsFullWidth {
         /// The first item the narrow kernel does not take.

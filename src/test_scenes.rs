@@ -100,3 +100,75 @@ pub(crate) fn random_classic_scene<const S: usize, const L: usize>(
     }
     scene
 }
+
+/// One to five classic spheres resting on a floor sphere of radius 20 to 150 (each touching
+/// its surface), under one to three distant lights from above, seen from a camera 5 to 9
+/// units away at a height of 0.5 to 4 with a field of view of 30° to 60°.
+pub(crate) fn random_floor_scene<const S: usize, const L: usize>(
+    next: &mut impl FnMut(f32, f32) -> f32,
+) -> Scene<S, L> {
+    let angle = next(-3.1, 3.1);
+    let distance = next(5.0, 9.0);
+    let camera = Camera {
+        position: Vec3::new(
+            distance * libm::sinf(angle),
+            next(0.5, 4.0),
+            distance * libm::cosf(angle),
+        ),
+        look_at: Vec3::new(0.0, 0.5, 0.0),
+        up: Vec3::new(0.0, 1.0, 0.0),
+        vfov_degrees: next(30.0, 60.0),
+    };
+    let mut scene = Scene::new(camera, LinearRgb::new(0.05, 0.06, 0.1)).unwrap();
+    let floor = next(20.0, 150.0);
+    let grey = |shininess: f32| Material {
+        albedo: LinearRgb::new(0.5, 0.5, 0.5),
+        kd: 0.8,
+        ks: 0.2,
+        shininess,
+        model: Model::Phong,
+    };
+    scene
+        .add_sphere(Sphere {
+            center: Vec3::new(0.0, -floor, 0.0),
+            radius: floor,
+            material: grey(8.0),
+        })
+        .unwrap();
+    for _ in 0..(next(1.0, 5.99) as usize) {
+        let radius = next(0.3, 1.2);
+        let (x, z) = (next(-3.0, 3.0), next(-3.0, 3.0));
+        // On the floor sphere's surface: |centre − (0, −R, 0)| = R + r.
+        let reach = floor + radius;
+        let y = libm::sqrtf(reach * reach - x * x - z * z) - floor;
+        let model = if next(0.0, 1.0) < 0.5 {
+            Model::Phong
+        } else {
+            Model::BlinnPhong
+        };
+        let material = Material {
+            albedo: LinearRgb::new(next(0.0, 1.0), next(0.0, 1.0), next(0.0, 1.0)),
+            model,
+            ..grey(libm::powf(2.0, next(0.0, 9.0)))
+        };
+        // Spheres that overlap another are refused by no path, so any draw is a scene.
+        scene
+            .add_sphere(Sphere {
+                center: Vec3::new(x, y, z),
+                radius,
+                material,
+            })
+            .unwrap();
+    }
+    for _ in 0..(next(1.0, 3.99) as usize) {
+        let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, -0.2), next(-1.0, 1.0));
+        scene
+            .add_light(Light::Distant {
+                direction,
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: next(0.5, 1.5),
+            })
+            .unwrap();
+    }
+    scene
+}

@@ -13,9 +13,8 @@
 //! # When it applies
 //!
 //! A frame uses it (the prepare's `NarrowView`) when every light is distant, every
-//! sphere uses a classic model (Phong or Blinn-Phong, not normalized), every sphere is more
-//! than `4ε` from each sphere that can shadow it ([`crate::Scene::shadow_casters`]), the
-//! camera is outside every sphere, and the image plane is narrow enough that every primary
+//! sphere uses a classic model (Phong or Blinn-Phong, not normalized), the camera is outside
+//! every sphere, and the image plane is narrow enough that every primary
 //! direction is within `√2` of the central one in length (a field of view up to about 90° on
 //! the diagonal). Every other frame renders with the full-width kernel alone. The
 //! conditions are frame-wide, so a pixel's result does not depend on which spheres' spans
@@ -55,7 +54,8 @@
 //! The sphere's own shadow needs no ray: a ray lifted by ε off the surface meets the sphere
 //! again iff `N·L < 0` and `(N·L)² > 1 − r²/(r + ε)²`. Another sphere is tested only where
 //! the caster filter of `NarrowLight` (from `N·L` alone) lets it, exactly as the full-width
-//! kernel's shadow ray would be, from the normal.
+//! kernel's shadow ray would be, from the normal. A sphere resting on another needs nothing
+//! more: the test is the full-width kernel's rule for a ray that starts inside a caster too.
 //!
 //! # Where the lobe needs more bits
 //!
@@ -834,10 +834,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// the ray toward the distant light `to_light` from the point of sphere `index` with
     /// normal `n`, lifted by ε: the shadow stage's caster test, from the narrow normal.
     ///
-    /// The prepare only sets up the narrow kernel when every sphere is more than `4ε` away
-    /// from each of its casters, so the lifted point is outside them: a caster blocks iff
-    /// the ray moves toward its centre (`b = (O − C)·L < 0`) and passes within its radius
-    /// (`|O − C|² − b² ≤ r²`), and no square root is needed. `light` is the light's index.
+    /// A caster more than `4ε` from the sphere blocks iff the ray moves toward its centre
+    /// (`b = (O − C)·L < 0`) and passes within its radius (`|O − C|² − b² ≤ r²`): the lifted
+    /// point is outside it, and no square root is needed. A caster the sphere touches
+    /// ([`NarrowSphere::touching`](super::prepare::NarrowSphere), a sphere resting on a floor
+    /// sphere) takes the full-width kernel's rule, a crossing beyond `ε`
+    /// ([`Self::crosses_beyond_epsilon`]), since the lifted point may lie inside it. `light`
+    /// is the light's index.
     #[inline(always)]
     fn narrow_blocked(&self, index: usize, n: V3<i32>, light: usize, casters: u32) -> bool {
         debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
@@ -847,6 +850,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return false;
         };
         let to_light = *to_light;
+        let touching = own.narrow.as_ref().map_or(u32::MAX, |n| n.touching);
         let mut origin: Option<V3<i32>> = None;
         for (k, s) in self.spheres.iter().enumerate() {
             if k == index || (k < 32 && casters & (1 << k) == 0) {
@@ -866,15 +870,32 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             // every step below is exact, with no clamp or saturation.
             let oc = each3(|i| origin[i] - s.center[i].to_bits());
             let b = (dot_ii(oc, to_light.map(|c| c.to_bits())) >> 30) as i32;
+            let touches = k < 32 && touching & (1 << k) != 0;
             if b >= 0 {
+                // Moving away from the caster's centre: blocked only from inside it, which
+                // a lifted point can be only at a sphere it touches.
+                if touches && self.crosses_beyond_epsilon(oc, b, s) {
+                    return true;
+                }
                 continue;
             }
             let miss = dot_ii(oc, oc) - mul_ii(b, b);
-            if miss <= s.radius_sq.to_bits() {
+            if miss <= s.radius_sq.to_bits() && (!touches || self.crosses_beyond_epsilon(oc, b, s))
+            {
                 return true;
             }
         }
         false
+    }
+
+    /// Whether the ray from `oc` (raw, from the caster's centre) along the light, `b` being
+    /// `oc·L` (raw), leaves the caster `s` beyond `ε`, given that its line meets it: ahead of
+    /// the point (`b < −ε`), or from a point inside or within `ε` of it, iff
+    /// `r² − |oc|² > ε·(2b + ε)`. Only where the sphere touches the caster; out of line.
+    #[inline(never)]
+    fn crosses_beyond_epsilon(&self, oc: V3<i32>, b: i32, s: &FixedSphere) -> bool {
+        let eps = self.epsilon.to_bits() as i64;
+        (b as i64) < -eps || s.radius_sq.to_bits() - dot_ii(oc, oc) > eps * (2 * b as i64 + eps)
     }
 
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
@@ -1404,6 +1425,51 @@ mod tests {
             "{count} terms, {blinn} Blinn-Phong"
         );
         assert!(worst <= 1.0 / (1u64 << 25) as f64, "h off by {worst}");
+    }
+
+    #[test]
+    fn spheres_resting_on_a_floor_agree_with_the_reference() {
+        use crate::reference::{quantize, render_frame, RefPixel};
+        use crate::Render;
+        let (w, h) = (160u32, 120u32);
+        let mut next = uniform(0x003e_d9e5);
+        let (mut pixels, mut differ, mut shadowed, mut worst) = (0, 0, 0, 0);
+        for i in 0..16 {
+            let scene: crate::Scene<8, 4> = crate::test_scenes::random_floor_scene(&mut next);
+            let frame = PreparedFixed::<8, 4>::new(&scene, w, h).unwrap();
+            assert!(frame.narrow.is_some(), "scene {i} takes the narrow kernel");
+            let mut reference = std::vec![RefPixel::default(); (w * h) as usize];
+            render_frame(&scene, w, h, &mut reference).unwrap();
+            let mut colors = std::vec![crate::Rgb888::default(); w as usize];
+            let mut hits = std::vec![HitRecord::default(); w as usize];
+            for y in 0..h {
+                frame.render_line(y, &mut colors).unwrap();
+                frame.render_line(y, &mut hits).unwrap();
+                let want = &reference[(y * w) as usize..((y + 1) * w) as usize];
+                for ((c, hit), want) in colors.iter().zip(&hits).zip(want) {
+                    pixels += 1;
+                    shadowed += usize::from(want.hit.shadowed != 0);
+                    if *hit != want.hit {
+                        differ += 1;
+                        continue;
+                    }
+                    for (got, c) in [c.r, c.g, c.b].into_iter().zip(want.color) {
+                        let level = quantize(c, 255.0) as i32;
+                        worst = worst.max((got as i32 - level).abs());
+                    }
+                }
+            }
+        }
+        std::println!(
+            "{pixels} pixels, {shadowed} shadowed, {differ} decisions differ, worst {worst}"
+        );
+        // Shadows of spheres on the floor and of the floor on them, at every contact.
+        assert!(shadowed > pixels / 20, "{shadowed} shadowed of {pixels}");
+        assert!(
+            differ * 1000 <= pixels,
+            "{differ} of {pixels} decisions differ"
+        );
+        assert!(worst <= 2, "{worst} levels");
     }
 
     #[test]

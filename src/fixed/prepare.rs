@@ -259,6 +259,10 @@ pub(crate) struct NarrowSphere {
     pub rows: (u32, u32),
     #[cfg(not(feature = "full-width"))]
     pub columns: (u32, u32),
+    /// The spheres within `4ε` of this one (bit `k` for sphere `k`; a sphere resting on a
+    /// floor sphere, and the floor under it): only from these can a lifted point start
+    /// inside a caster, which the caster test then checks for (`narrow_blocked`).
+    pub touching: u32,
 }
 
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
@@ -1091,6 +1095,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             ((budget / (2.0 * n * H_ERROR)) * 65536.0) as u32
         };
         let narrow = NarrowSphere {
+            touching: self.touching(i),
             fast_lobe_max,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
                 as u32,
@@ -1111,6 +1116,27 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             None => return Err("center"),
         }
         Ok(())
+    }
+
+    /// The spheres whose surface comes within `4ε` of sphere `i`'s (bit `k` for sphere `k`,
+    /// the first 32), from the exact squared distance of the centres.
+    fn touching(&self, i: usize) -> u32 {
+        let Some(own) = self.spheres.get(i) else {
+            return 0;
+        };
+        let eps = self.epsilon.to_bits() as i64;
+        let mut mask = 0;
+        for (k, s) in self.spheres.iter().enumerate().take(32) {
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(s.center[j].to_bits()));
+            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
+            // Radii below 2²⁹ raw and ε far below: the sum fits an `i32`.
+            let apart = (own.radius.to_bits() as i64 + s.radius.to_bits() as i64 + 4 * eps)
+                .min(i32::MAX as i64) as i32;
+            if k != i && len2 <= mul_ii(apart, apart) {
+                mask |= 1 << k;
+            }
+        }
+        mask
     }
 
     /// Sphere `i`'s narrow constants for light `light`, from the frame's narrow view, the
@@ -1168,9 +1194,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// and the root ([`sqrt`], within `2⁻²⁹`) lowered by four units and that relative error,
     /// which also covers `|L|`'s distance from 1 (`2⁻²⁹`).
     ///
-    /// `None` if a caster is within `4ε` of the sphere (the narrow kernel's caster test
-    /// assumes its shadow rays start outside the casters), or the frame has spheres beyond
-    /// the mask's 32 bits. Out of line: once per sphere and light.
+    /// A caster touching the sphere (a sphere resting on a floor sphere) is in the mask like
+    /// any other; where the lifted point lies within `ε` of it and ahead of its centre along
+    /// the light, the filter passes the pixel as unblocked, which the full-width kernel's
+    /// ray, starting inside the caster, may not: a sliver of width `ε` at the contact.
+    ///
+    /// `None` if the frame has spheres beyond the mask's 32 bits. Out of line: once per
+    /// sphere and light.
     #[inline(never)]
     fn narrow_casters(&self, i: usize, to_light: V3<Unit>) -> Option<(u32, i32, u32)> {
         let own = self.spheres.get(i)?;
@@ -1214,10 +1244,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 continue;
             }
             mask |= 1 << k;
-            let apart = (radii + 4 * eps) as i32;
-            if len2 <= mul_ii(apart, apart) {
-                return None;
-            }
             // −(Δ·L)/(r + ε) in Q15, rounded up (by a whole step where it is positive).
             let q = (along.unsigned_abs() / (lift << 15).max(1)) as i64;
             ahead = ahead.max(if along < 0 { q + 1 } else { -q });

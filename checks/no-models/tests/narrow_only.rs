@@ -150,19 +150,19 @@ fn a_refused_prepare_leaves_the_frame_empty() {
     assert!(frame.render_line(0, &mut line).is_err());
 }
 
-/// The floor scene (classic spheres resting on a floor sphere, distant lights) is refused
-/// for the floor under the spheres resting on it: the item and field a build with
-/// `full-width` gives as the reason for its full-width kernel (`PreparedFixed::kernel`,
-/// `tests/kernel_choice.rs`).
+/// The floor scene (classic spheres resting on a floor sphere, distant lights) takes the
+/// narrow kernel: spheres touching their casters need no other, and its shadows are there.
 #[test]
-fn the_floor_scene_is_refused_for_its_floor() {
+fn the_floor_scene_renders_with_its_shadows() {
     let scene = shadeline::floor().unwrap();
     let (w, h) = shadeline::MATRIX_SIZE;
-    assert_eq!(
-        PreparedFixed::new(&scene, w, h).err(),
-        Some(RenderError::NeedsFullWidth {
-            item: Item::Sphere(0),
-            field: "center"
-        })
-    );
+    let frame = PreparedFixed::new(&scene, w, h).expect("the narrow kernel takes the floor");
+    assert_eq!(frame.kernel(), shadeline::Kernel::Narrow);
+    let mut line = [shadeline::HitRecord::default(); 320];
+    let mut shadowed = 0;
+    for y in 0..h {
+        frame.render_line(y, &mut line[..w as usize]).unwrap();
+        shadowed += line.iter().filter(|r| r.shadowed != 0).count();
+    }
+    assert!(shadowed > 1000, "{shadowed} shadowed pixels");
 }

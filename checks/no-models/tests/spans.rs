@@ -22,7 +22,8 @@ fn frame<const S: usize, const L: usize>(frame: &PreparedFixed<S, L>) -> Vec<Rgb
 }
 
 /// Renders `scene` at `w × h` with and without spans and compares; `false` if the narrow
-/// kernel refuses the frame (a random scene may put spheres too close together).
+/// kernel refuses the frame (a random scene may put the camera too close to a sphere), or
+/// the frame is of one colour.
 fn spans_change_nothing<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
     (w, h): (u32, u32),
@@ -42,9 +43,9 @@ fn spans_change_nothing<const S: usize, const L: usize>(
             i as u32 / w
         );
     }
-    // A frame of background alone would test nothing.
-    assert!(a.iter().any(|p| *p != a[0]), "{what}: no sphere on screen");
-    true
+    // A frame of one colour (the background alone, or a sphere in shadow filling it) tests
+    // nothing: it is not counted.
+    a.iter().any(|p| *p != a[0])
 }
 
 #[test]
