@@ -657,3 +657,99 @@ fn to_file_scene<const S: usize, const L: usize>(
         antialias: false,
     })
 }
+
+#[cfg(test)]
+mod reference_page {
+    //! `docs/scene-file.md` against the parser: every key each table accepts is in the page's
+    //! section for that table, and the page's complete example parses.
+
+    use super::*;
+    use serde::de::{self, Visitor};
+
+    const PAGE: &str = include_str!("../../docs/scene-file.md");
+
+    /// A deserializer that only records the fields a struct asks for, then stops.
+    struct Fields(&'static [&'static str]);
+
+    impl<'de> de::Deserializer<'de> for &mut Fields {
+        type Error = de::value::Error;
+
+        fn deserialize_any<V: Visitor<'de>>(self, _: V) -> Result<V::Value, Self::Error> {
+            Err(de::Error::custom("not a struct"))
+        }
+
+        fn deserialize_struct<V: Visitor<'de>>(
+            self,
+            _: &'static str,
+            fields: &'static [&'static str],
+            _: V,
+        ) -> Result<V::Value, Self::Error> {
+            self.0 = fields;
+            Err(de::Error::custom("fields recorded"))
+        }
+
+        serde::forward_to_deserialize_any! {
+            bool i8 i16 i32 i64 i128 u8 u16 u32 u64 u128 f32 f64 char str string bytes
+            byte_buf option unit unit_struct newtype_struct seq tuple tuple_struct map enum
+            identifier ignored_any
+        }
+    }
+
+    /// The keys a raw table type accepts.
+    fn keys<'de, T: Deserialize<'de>>() -> &'static [&'static str] {
+        let mut fields = Fields(&[]);
+        let _ = T::deserialize(&mut fields);
+        fields.0
+    }
+
+    /// The page's text from heading `heading` to the next `## `.
+    fn section(heading: &str) -> &'static str {
+        let start = PAGE
+            .find(&format!("## {heading}\n"))
+            .unwrap_or_else(|| panic!("no section {heading}"));
+        let rest = &PAGE[start + 3..];
+        rest.find("\n## ").map_or(rest, |end| &rest[..end])
+    }
+
+    #[test]
+    fn every_accepted_key_is_documented_in_its_section() {
+        let tables: [(&str, &[&str]); 5] = [
+            ("`[image]`", keys::<RawImage>()),
+            ("`[camera]`", keys::<RawCamera>()),
+            ("`[[light]]`", keys::<RawLight>()),
+            ("`[[sphere]]`", keys::<RawSphere>()),
+            ("`[[sphere]]`", keys::<RawLobe>()),
+        ];
+        let mut checked = 0;
+        for (heading, fields) in tables {
+            assert!(!fields.is_empty(), "{heading}: no fields recorded");
+            let text = section(heading);
+            for field in fields {
+                assert!(
+                    text.contains(&format!("`{field}`")),
+                    "docs/scene-file.md: key `{field}` of {heading} is not documented there"
+                );
+                checked += 1;
+            }
+        }
+        for table in keys::<RawFile>() {
+            let heading = if matches!(*table, "light" | "sphere") {
+                format!("## `[[{table}]]`")
+            } else {
+                format!("## `[{table}]`")
+            };
+            assert!(PAGE.contains(&heading), "no section for `{table}`");
+        }
+        assert!(checked >= 25, "{checked} keys");
+    }
+
+    #[test]
+    fn the_complete_example_parses() {
+        let start = PAGE.find("```toml\n").expect("an example") + 8;
+        let end = start + PAGE[start..].find("```").expect("its end");
+        let file = parse_scene(&PAGE[start..end]).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!((file.width, file.height), (320, 240));
+        assert_eq!(file.scene.spheres().len(), 5);
+        assert_eq!(file.scene.lights().len(), 2);
+    }
+}
