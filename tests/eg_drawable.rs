@@ -180,7 +180,7 @@ fn exponent_series_frame_is_drawn_exactly_with_few_calls() {
         assert_eq!(s, v, "scalar and SIMD spans are the same");
         if e == Encoding::LINEAR {
             assert!(s.1 > 0 && f.1 > 0, "background rows are solid fills");
-            // The README's figures for the float paths.
+            // The figures of `docs/features.md` for the float paths.
             assert_eq!(s, (56, 184), "fills per frame on the float paths");
         }
         let _ = f;

@@ -1,6 +1,7 @@
-//! Claims of the README that no other test holds: the model's formulas as the README states
-//! them (an untinted highlight, a point light's `colour·intensity / (4π r²)`), what its two
-//! pictures of the exponent series show, and the facts it repeats from `Cargo.toml`.
+//! Claims of the README and of `docs/model.md` that no other test holds: the model's
+//! formulas as `docs/model.md` states them (an untinted highlight, a point light's
+//! `colour·intensity / (4π r²)`), what the pictures of the exponent series and the materials
+//! gallery show, and the facts the README repeats from `Cargo.toml`.
 
 use crate::common;
 use common::*;

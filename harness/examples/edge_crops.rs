@@ -1,5 +1,5 @@
-//! Writes the crops of the README's anti-aliasing section: a silhouette of the exponent series
-//! at the size of a 320×240 display, sharp, with analytic anti-aliasing, and the 16×16
+//! Writes the crops of the gallery's anti-aliasing section (`docs/gallery.md`): a
+//! silhouette of the exponent series at the size of a 320×240 display, sharp, with analytic anti-aliasing, and the 16×16
 //! supersampled truth it is measured against, magnified 8× (nearest neighbour) so single
 //! pixels show.
 //!

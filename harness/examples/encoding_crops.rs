@@ -1,5 +1,5 @@
-//! Writes the before/after crops of the README's encoding section: the dark side of a sphere
-//! of the exponent series in RGB565, linear and sRGB, each without and with ordered
+//! Writes the before/after crops of the gallery's encoding section (`docs/gallery.md`): the
+//! dark side of a sphere of the exponent series in RGB565, linear and sRGB, each without and with ordered
 //! dithering, magnified 6× (nearest neighbour) so single pixels show.
 //!
 //! ```sh

@@ -262,8 +262,8 @@ fn a_scene_file_and_a_preset_together_or_an_unwritable_output_are_refused() {
     assert!(stderr(&out).starts_with("missing/lobes.svg: error: cannot write"));
 }
 
-/// The README's lobe plots are what the binary writes now: after a change to the plot,
-/// regenerate them with the commands under their captions (README, "Lobe plots").
+/// The gallery's lobe plots are what the binary writes now: after a change to the plot,
+/// regenerate them with the commands under their captions (`docs/gallery.md`, "Lobe plots").
 #[test]
 fn the_readme_lobe_plots_are_current() {
     let docs = concat!(env!("CARGO_MANIFEST_DIR"), "/../docs/");
@@ -283,9 +283,12 @@ fn the_readme_lobe_plots_are_current() {
         ),
     ] {
         let committed = std::fs::read_to_string(format!("{docs}{file}")).unwrap();
-        let readme = include_str!("../../README.md");
+        let gallery = include_str!("../../docs/gallery.md");
         let command = format!("shadeline plot {} -o docs/{file}", args.join(" "));
-        assert!(readme.contains(&command), "the README shows `{command}`");
+        assert!(
+            gallery.contains(&command),
+            "docs/gallery.md shows `{command}`"
+        );
         assert!(
             plot_svg(args, file) == committed,
             "docs/{file} is out of date: regenerate it with `{command}`"

@@ -37,8 +37,8 @@
 //! RST GP12, backlight GP13. The panel is the bus's only device, so CS stays low. The clocks
 //! are the HAL's defaults (125 MHz system clock), which give the SPI its 62.5 MHz maximum.
 //!
-//! Compile-checked for thumbv6m-none-eabi by `.ci/rp2040-check` (built, not run); the README
-//! section "RP2040" gives the frame time the M0 instruction count implies.
+//! Compile-checked for thumbv6m-none-eabi by `.ci/rp2040-check` (built, not run);
+//! `docs/firmware.md`, section "RP2040", gives the frame time the M0 instruction count implies.
 #![no_std]
 #![no_main]
 #![deny(unsafe_code)]
