@@ -5,7 +5,8 @@
 //!   ([`toml_keys`] finds the keys);
 //! - [`paths`]: the list of rendering paths; [`rows`]: rendering rows on threads;
 //! - [`compare`]: measuring the paths against the `f64` reference; [`image`]: PNG output;
-//! - [`plot`]: lobe plots, a material's BRDF and the scene's `cos^n` curves as SVG.
+//! - [`plot`]: lobe plots, a material's BRDF and the scene's `cos^n` curves as SVG;
+//! - [`progress`]: a progress bar for work that takes more than a second.
 
 #![warn(missing_docs)]
 
@@ -14,6 +15,7 @@ pub mod edges;
 pub mod image;
 pub mod paths;
 pub mod plot;
+pub mod progress;
 pub mod rows;
 pub mod scene_file;
 pub mod toml_keys;

@@ -2,10 +2,9 @@
 //! `f64` reference.
 //!
 //! ```text
-//! shadeline render  [SCENE.toml | --preset NAME]
-//!                   [--path scalar|simd4|simd8|simd|fixed] [-o spheres.png]
-//!                   [--threads N] [--width W] [--height H] [--repeat N]
-//! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H]
+//! shadeline render  [SCENE.toml | --preset NAME] [--path scalar|simd4|simd8|simd|fixed]
+//!                   [-o spheres.png] [--threads N] [--width W] [--height H] [--repeat N] [--antialias]
+//! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H] [--antialias]
 //! shadeline plot    [SCENE.toml | --preset NAME] [--sphere N] [--incidence DEG] [-o lobes.svg]
 //! ```
 //!
@@ -39,6 +38,7 @@ use shadeline_harness::edges::{self, EdgeRow};
 use shadeline_harness::image::PngFile;
 use shadeline_harness::paths::{self, Options, Path, PrepareError, PATHS};
 use shadeline_harness::plot::{self, PlotError};
+use shadeline_harness::progress::Progress;
 use shadeline_harness::rows::{check_memory, default_threads, new_frame, FrameError};
 use shadeline_harness::scene_file::{
     builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
@@ -69,9 +69,15 @@ enum Command {
         /// Where to write the PNG.
         #[arg(short, long, default_value = "spheres.png")]
         output: PathBuf,
+        /// Anti-alias the silhouettes analytically, as `antialias = true` under `[image]` does
+        /// (every path).
+        #[arg(long)]
+        antialias: bool,
         /// Timed frames after one untimed warm-up frame; the median and best are reported.
-        #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
-        repeat: u16,
+        /// Without it: five where a frame takes under a quarter of a second, otherwise the
+        /// first frame alone, timed.
+        #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
+        repeat: Option<u16>,
     },
     /// Compare every path with the f64 reference: a table, and a picture of the differences.
     Compare {
@@ -80,6 +86,11 @@ enum Command {
         /// Where to write the comparison PNG.
         #[arg(short, long, default_value = "compare.png")]
         output: PathBuf,
+        /// Anti-alias the silhouettes analytically, as `antialias = true` under `[image]`
+        /// does, and measure the edges against a 16×16 supersampled truth, next to 4×4
+        /// supersampling.
+        #[arg(long)]
+        antialias: bool,
     },
     /// Plot a sphere's BRDF in the plane of incidence (polar, f·cos θ_o) and the lesson's
     /// max(0, cos α)^n curves for every shininess in the scene, to one SVG.
@@ -121,11 +132,6 @@ struct Input {
     /// Image height in pixels, instead of the scene file's.
     #[arg(long, allow_negative_numbers = true, value_parser = pixels)]
     height: Option<u32>,
-    /// Anti-alias the silhouettes analytically, as `antialias = true` under `[image]` does
-    /// (every path). With `compare`: also measure the edges against a 16×16 supersampled
-    /// truth, next to 4×4 supersampling.
-    #[arg(long)]
-    antialias: bool,
     /// Threads to render rows on [default: the available parallelism].
     #[arg(long, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
     threads: Option<u16>,
@@ -196,9 +202,14 @@ fn main() -> ExitCode {
             input,
             path,
             output,
+            antialias,
             repeat,
-        } => render(&input, &path, &output, usize::from(repeat)),
-        Command::Compare { input, output } => run_compare(&input, &output),
+        } => render(&input, &path, (&output, antialias), repeat.map(usize::from)),
+        Command::Compare {
+            input,
+            output,
+            antialias,
+        } => run_compare(&input, &output, antialias),
         Command::Plot {
             scene,
             sphere,
@@ -221,9 +232,9 @@ impl Input {
     }
 
     /// The rendering options: the scene file's, with `--antialias` turning edges on.
-    fn options(&self, file: &SceneFile) -> Options {
+    fn options(file: &SceneFile, antialias: bool) -> Options {
         Options {
-            antialias: self.antialias || file.antialias,
+            antialias: antialias || file.antialias,
         }
     }
 
@@ -276,47 +287,73 @@ fn read_scene(path: &std::path::Path) -> Result<SceneFile, Failure> {
     parse_scene(&text).map_err(|e| Failure::input(format!("{name}:{e}")))
 }
 
+/// A frame that renders in less than this is timed over several repeats by default; a
+/// slower one renders once (see `--repeat`).
+const CHEAP_FRAME: f64 = 0.25;
+
+/// Repeats of a cheap frame when `--repeat` is not given.
+const DEFAULT_REPEAT: usize = 5;
+
 fn render(
     input: &Input,
     path_name: &str,
-    output: &std::path::Path,
-    repeat: usize,
+    (output, antialias): (&std::path::Path, bool),
+    repeat: Option<usize>,
 ) -> Result<(), Failure> {
     let file = input.load()?;
     let threads = input.threads();
     let path: Path = paths::find(path_name)
         .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
     let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
-    let frame = (path.prepare)(&file.scene, file.width, file.height, input.options(&file))
+    let options = Input::options(&file, antialias);
+    let frame = (path.prepare)(&file.scene, file.width, file.height, options)
         .map_err(|e| Failure::input(format!("error: {e}")))?;
     let png = open_output(output)?;
     let mut rgb =
         new_frame(file.width, file.height).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
-    // One untimed frame first: it faults the buffer's pages in and warms the caches, so the
-    // timed frames measure shading, not the operating system.
-    frame.render_rgb_into(&mut rgb, threads).map_err(failed)?;
-    let mut times = Vec::with_capacity(repeat);
-    for _ in 0..repeat {
+    let rows = u64::from(file.height);
+    // One frame first, timed: it faults the buffer's pages in and warms the caches, so the
+    // repeats measure shading, not the operating system. A frame too slow to repeat cheaply
+    // is reported from this one alone, unless `--repeat` asks for more.
+    let first = {
+        let _bar = Progress::start("rendering", rows);
         let start = Instant::now();
         frame.render_rgb_into(&mut rgb, threads).map_err(failed)?;
-        times.push(start.elapsed().as_secs_f64());
+        start.elapsed().as_secs_f64()
+    };
+    let repeat = repeat.unwrap_or(if first < CHEAP_FRAME {
+        DEFAULT_REPEAT
+    } else {
+        0
+    });
+    let mut times = Vec::with_capacity(repeat.max(1));
+    {
+        let _bar = Progress::start("timing", rows * repeat as u64);
+        for _ in 0..repeat {
+            let start = Instant::now();
+            frame.render_rgb_into(&mut rgb, threads).map_err(failed)?;
+            times.push(start.elapsed().as_secs_f64());
+        }
     }
-    times.sort_by(f64::total_cmp);
+    let timed = if times.is_empty() {
+        times.push(first);
+        "one frame".to_string()
+    } else {
+        times.sort_by(f64::total_cmp);
+        format!("median of {}, best {:.2} ms", times.len(), times[0] * 1e3)
+    };
     let median = times[times.len() / 2];
-    let best = times[0];
     png.write_pixels(file.width, file.height, &rgb)
         .map_err(write_failed(output))?;
     let megapixels = f64::from(file.width) * f64::from(file.height) / 1e6;
     println!(
-        "{}x{} {} on {} thread{}: {:.2} ms per frame (median of {}, best {:.2} ms), {:.1} Mpix/s -> {}",
+        "{}x{} {} on {} thread{}: {:.2} ms per frame ({timed}), {:.1} Mpix/s -> {}",
         file.width,
         file.height,
         path.name,
         threads,
         if threads == 1 { "" } else { "s" },
         median * 1e3,
-        repeat,
-        best * 1e3,
         megapixels / median,
         output.display()
     );
@@ -324,10 +361,11 @@ fn render(
     Ok(())
 }
 
-/// Timed runs per path; the median is reported.
+/// Timed runs per path where a frame is cheap (see [`CHEAP_FRAME`]); the median is
+/// reported. A slower frame is timed once.
 const RUNS: usize = 3;
 
-fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
+fn run_compare(input: &Input, output: &std::path::Path, antialias: bool) -> Result<(), Failure> {
     let file = input.load()?;
     let threads = input.threads();
     let (scene, w, h) = (&file.scene, file.width, file.height);
@@ -337,6 +375,8 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
     // Every buffer compare holds at once, checked before the first frame is rendered.
     check_memory(w, h, compare::bytes_per_pixel(PATHS.len()))
         .map_err(|e| Failure::frame(e.into()))?;
+    let height = u64::from(h);
+    let bar = Progress::start("comparing", height * (1 + 2 * PATHS.len() as u64));
     let reference = compare::render_reference(scene, w, h, threads).map_err(Failure::frame)?;
     let ref_rgb = compare::reference_rgb(&reference);
     let mut rows = Vec::new();
@@ -355,7 +395,10 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         }
         let mut times = Vec::new();
         let mut rgb = Vec::new();
-        for _ in 0..RUNS {
+        for run in 0..RUNS {
+            if run > 0 && times.iter().any(|&ms| ms >= CHEAP_FRAME * 1e3) {
+                break;
+            }
             let start = Instant::now();
             rgb = (path.prepare)(scene, w, h, sharp)
                 .map_err(failed)?
@@ -371,13 +414,16 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         rows.push(Row {
             name: path.name,
             stats: compare::stats(&reference, &ref_rgb, &rgb, &hits),
-            millis: times[RUNS / 2],
+            millis: times[times.len() / 2],
         });
         images.push(rgb);
     }
+    drop(bar);
     println!(
-        "{w}x{h}, {threads} thread{}, against the f64 reference (8-bit levels; time is the median of {RUNS})",
-        if threads == 1 { "" } else { "s" }
+        "{w}x{h}, {threads} thread{}, against the f64 reference (8-bit levels; time is the \
+         median of {RUNS}, or one frame where a frame takes {:.2} s or more)",
+        if threads == 1 { "" } else { "s" },
+        CHEAP_FRAME
     );
     print!("{}", compare::table(&rows));
     for note in &notes {
@@ -392,7 +438,10 @@ fn run_compare(input: &Input, output: &std::path::Path) -> Result<(), Failure> {
         PATHS.iter().map(|p| p.name).collect::<Vec<_>>().join(" | "),
         compare::DIFF_GAIN
     );
-    if input.options(&file).antialias {
+    if Input::options(&file, antialias).antialias {
+        // The truth, 4×4 supersampling, the sharp frame and every path's: a frame each.
+        let frames = 3 + PATHS.len() as u64;
+        let _bar = Progress::start("measuring the edges", height * frames);
         compare_edges(&file, threads)?;
     }
     Ok(())

@@ -8,8 +8,10 @@
 //! to one or two threads. Since every row is a pure function of its index, the output does not
 //! depend on the number of threads.
 
+use crate::progress::ROWS_SHADED;
 use shadeline::RenderError;
 use std::fmt;
+use std::sync::atomic::Ordering;
 use std::thread;
 
 /// A frame buffer that could not be allocated: the frame's size, and the bytes it needed.
@@ -175,6 +177,7 @@ where
                     for (first_row, rows) in blocks {
                         for (i, row) in rows.chunks_exact_mut(w).enumerate() {
                             shade_row((first_row + i) as u32, row)?;
+                            ROWS_SHADED.fetch_add(1, Ordering::Relaxed);
                         }
                     }
                     Ok(())

@@ -460,3 +460,108 @@ fn render_names_the_kernel_and_why() {
         "{stdout}"
     );
 }
+
+/// The long options of `shadeline COMMAND --help`, without `--help`.
+fn help_options(command: &str) -> std::collections::BTreeSet<String> {
+    let dir = temp_dir(&format!("help_{command}"));
+    let out = shadeline(&[command, "--help"], &dir);
+    assert!(out.status.success(), "{}", stderr(&out));
+    let text = String::from_utf8(out.stdout).unwrap();
+    let options = text.split("Options:").nth(1).expect("an Options section");
+    long_options(options)
+        .into_iter()
+        .filter(|o| o != "--help")
+        .collect()
+}
+
+/// Every `--word` in `text`.
+fn long_options(text: &str) -> Vec<String> {
+    text.split(|c: char| !(c.is_ascii_alphanumeric() || c == '-'))
+        .filter(|w| w.starts_with("--") && w.len() > 2)
+        .map(str::to_string)
+        .collect()
+}
+
+/// The options a usage block (`shadeline COMMAND …` lines, continued on indented lines)
+/// shows for `command`, and the preset names it lists, if it lists them.
+fn usage_options(block: &str, command: &str) -> std::collections::BTreeSet<String> {
+    let mut options = std::collections::BTreeSet::new();
+    let mut inside = false;
+    for line in block.lines() {
+        let line = line.trim_start_matches("//!").trim();
+        if let Some(rest) = line.strip_prefix("shadeline ") {
+            inside = rest.split_whitespace().next() == Some(command);
+        }
+        if inside {
+            options.extend(long_options(line));
+        }
+    }
+    options
+}
+
+/// The usage lines of `docs/harness.md` and of the binary's own docs name exactly the options
+/// each command's `--help` lists, and the page lists every preset.
+#[test]
+fn usage_lines_match_the_help() {
+    let root = concat!(env!("CARGO_MANIFEST_DIR"), "/..");
+    let page = std::fs::read_to_string(format!("{root}/docs/harness.md")).unwrap();
+    let main = std::fs::read_to_string(format!("{root}/harness/src/main.rs")).unwrap();
+    let blocks = [
+        (
+            "docs/harness.md",
+            page.split("```sh")
+                .nth(1)
+                .unwrap()
+                .split("```")
+                .next()
+                .unwrap(),
+        ),
+        (
+            "harness/src/main.rs",
+            main.split("```text")
+                .nth(1)
+                .unwrap()
+                .split("```")
+                .next()
+                .unwrap(),
+        ),
+    ];
+    for command in ["render", "compare", "plot"] {
+        let help = help_options(command);
+        assert!(
+            help.contains("--output") || help.contains("--preset"),
+            "{help:?}"
+        );
+        for (file, block) in blocks {
+            let mut shown = usage_options(block, command);
+            // `-o` is `--output`'s short form in the usage lines.
+            if block.contains(&format!("shadeline {command}")) && block.contains("-o ") {
+                shown.insert("--output".into());
+            }
+            assert_eq!(shown, help, "{file}: the usage of `shadeline {command}`");
+        }
+    }
+    let presets = shadeline_harness::scene_file::PRESETS.join("|");
+    assert!(
+        page.contains(&format!("--preset {presets}]")),
+        "docs/harness.md lists the presets"
+    );
+}
+
+/// A frame renders once more per `--repeat`, and a cheap frame five times by default: the
+/// report says how it was timed.
+#[test]
+fn repeats_are_reported_as_asked() {
+    let dir = temp_dir("repeats");
+    for (args, timed) in [
+        (&["--repeat", "3"][..], "(median of 3, best "),
+        (&[][..], "(median of 5, best "),
+    ] {
+        let mut all = vec!["render", "--width", "64", "--height", "48", "-o", "r.png"];
+        all.extend_from_slice(args);
+        let out = shadeline(&all, &dir);
+        assert!(out.status.success(), "{}", stderr(&out));
+        let report = String::from_utf8(out.stdout).unwrap();
+        assert!(report.contains(timed), "{args:?}: {report}");
+    }
+}
