@@ -473,6 +473,18 @@ impl<T: ScalarReal> Params<T> {
         }
     }
 
+    /// Lambert's constants under the classic formulas: `kd·albedo/π` as the diffuse
+    /// weight and no specular term (`ks` 0). What the fixed path's narrow kernel needs for a
+    /// Lambert sphere, which it shades as a classic one, without the normalization code.
+    pub fn lambert(m: &Material) -> Self {
+        let classic = Self::classic(m);
+        Params {
+            kd_albedo: classic.kd_albedo.scale(T::splat(1.0) / T::pi()),
+            ks: T::splat(0.0),
+            ..classic
+        }
+    }
+
     /// The constants of `m`: normalization factors, `F₀`, and the diffuse scale, computed
     /// once (in prepare, or in `f64` by the tests).
     ///

@@ -102,7 +102,7 @@ pub(crate) fn random_classic_scene<const S: usize, const L: usize>(
 }
 
 /// One to five classic spheres resting on a floor sphere of radius 20 to 150 (each touching
-/// its surface), under one to three distant lights from above, seen from a camera 5 to 9
+/// its surface; the floor Phong or Lambert), under one to three distant lights from above, seen from a camera 5 to 9
 /// units away at a height of 0.5 to 4 with a field of view of 30° to 60°.
 pub(crate) fn random_floor_scene<const S: usize, const L: usize>(
     next: &mut impl FnMut(f32, f32) -> f32,
@@ -128,11 +128,19 @@ pub(crate) fn random_floor_scene<const S: usize, const L: usize>(
         shininess,
         model: Model::Phong,
     };
+    let floor_model = if next(0.0, 1.0) < 0.5 {
+        Model::Lambert
+    } else {
+        Model::Phong
+    };
     scene
         .add_sphere(Sphere {
             center: Vec3::new(0.0, -floor, 0.0),
             radius: floor,
-            material: grey(8.0),
+            material: Material {
+                model: floor_model,
+                ..grey(8.0)
+            },
         })
         .unwrap();
     for _ in 0..(next(1.0, 5.99) as usize) {

@@ -93,3 +93,45 @@ fn spheres_resting_on_a_floor_take_the_narrow_kernel_on_every_path() {
     // `checks/no-models/tests/narrow_only.rs`).
     assert_eq!(kernels(&floor().unwrap(), 320, 240), [Kernel::Narrow; 4]);
 }
+
+/// A Lambert floor under distant lights takes the narrow kernel on every path (a classic
+/// sphere with no lobe), and every path stays within its budget of the reference there: the
+/// float paths within one level, the fixed path within two, with at most 0.1% of the ray
+/// decisions differing.
+#[test]
+fn a_lambert_floor_takes_the_narrow_kernel_within_budget() {
+    let floor = floor().unwrap();
+    let mut scene = MatrixScene::new(*floor.camera(), floor.background()).unwrap();
+    for (i, s) in floor.spheres().iter().enumerate() {
+        let mut s = *s;
+        if i == 0 {
+            s.material.model = Model::Lambert;
+            s.material.kd = 1.0;
+        }
+        scene.add_sphere(s).unwrap();
+    }
+    for l in floor.lights() {
+        scene.add_light(*l).unwrap();
+    }
+    let (w, h) = (160, 120);
+    assert_eq!(kernels(&scene, w, h), [Kernel::Narrow; 4]);
+    let reference = common::reference_frame(&scene, w, h);
+    let scalar = common::agreement(
+        &Prepared::<Scalar, 6, 3>::new(&scene, w, h).unwrap(),
+        &reference,
+    );
+    let fixed = common::agreement(
+        &PreparedFixed::<6, 3>::new(&scene, w, h).unwrap(),
+        &reference,
+    );
+    println!("Lambert floor: scalar {scalar:?}, fixed {fixed:?}");
+    assert!(
+        scalar.max_levels <= 1 && scalar.decisions_differ == 0,
+        "{scalar:?}"
+    );
+    assert!(
+        fixed.max_levels <= 2 && fixed.within_one_share() >= 0.99,
+        "{fixed:?}"
+    );
+    assert!(fixed.differ_share() <= 0.001, "{fixed:?}");
+}

@@ -13,8 +13,8 @@
 //! # When it applies
 //!
 //! A frame uses it (the prepare's `NarrowView`) when every light is distant, every
-//! sphere uses a classic model (Phong or Blinn-Phong, not normalized), the camera is outside
-//! every sphere, and the image plane is narrow enough that every primary
+//! sphere uses a classic model (Phong or Blinn-Phong, not normalized) or Lambert (a classic
+//! sphere of diffuse weight `kd·albedo/π` and no lobe), the camera is outside every sphere, and the image plane is narrow enough that every primary
 //! direction is within `√2` of the central one in length (a field of view up to about 90° on
 //! the diagonal). Every other frame renders with the full-width kernel alone. The
 //! conditions are frame-wide, so a pixel's result does not depend on which spheres' spans

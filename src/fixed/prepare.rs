@@ -29,7 +29,6 @@ use super::vector::{each3, Len, Unit, V3};
 use crate::brdf::LOBES;
 use crate::brdf::{Params, BLINN_PHONG};
 use crate::render::{Kernel, RenderError};
-#[cfg(not(feature = "full-width"))]
 use crate::scene::Model;
 #[cfg(feature = "full-width")]
 use crate::scene::MORE_LOBES;
@@ -740,6 +739,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             #[cfg(not(feature = "full-width"))]
             let params = match m.model {
                 Model::Phong | Model::BlinnPhong => Params::<f32>::classic(m),
+                Model::Lambert => Params::<f32>::lambert(m),
                 _ => {
                     return Err(RenderError::NeedsFullWidth {
                         item,
@@ -962,8 +962,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         {
             return Err((Item::Light(light), "type"));
         }
+        // Lambert shades as a classic sphere with no lobe (`Params::lambert`, and no cutoff
+        // below); the other normalized models need the full-width kernel.
         #[cfg(feature = "full-width")]
-        if let Some(sphere) = self.spheres.iter().position(|s| s.normalized) {
+        if let Some(sphere) = self
+            .spheres
+            .iter()
+            .zip(scene.spheres())
+            .position(|(s, m)| s.normalized && !matches!(m.material.model, Model::Lambert))
+        {
             return Err((Item::Sphere(sphere), "model"));
         }
         // The narrow run indexes its tracks by `u8`.
@@ -1000,7 +1007,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a % 3], dirs[b % 3]));
         self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
-            let n = scene.spheres().get(i).map_or(1.0, |m| m.material.shininess);
+            let m = scene.spheres().get(i).map(|s| s.material);
+            let n = m.map_or(1.0, |m| m.shininess);
+            // A Lambert sphere has no lobe: no light's `h` is below a cutoff of 0.
+            let intensity = match m {
+                Some(m) if matches!(m.model, Model::Lambert) => 0.0,
+                _ => intensity,
+            };
             self.prepare_narrow_sphere(i, (&view, &gram), (n, intensity))
                 .map_err(|field| (Item::Sphere(i), field))?;
         }

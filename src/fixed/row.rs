@@ -253,8 +253,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
 impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
     /// The narrow kernel, or the full-width one because of the first light that is not
-    /// distant, sphere with a normalized model (or Lambert, Oren–Nayar, GGX), sphere the
-    /// camera or a caster is close to (`center`) or whose numbers do not fit the narrow
+    /// distant, sphere with a normalized model (or Oren–Nayar, GGX), sphere the
+    /// camera is close to (`center`) or whose numbers do not fit the narrow
     /// formats (`radius`), or a field of view too wide for them (`vfov`). Without the
     /// feature `full-width` it is always [`Kernel::Narrow`]: such a frame is refused instead
     /// ([`RenderError::NeedsFullWidth`], with the same item and field).

@@ -1,5 +1,6 @@
-//! The float paths' narrow kernel: classic Phong and Blinn-Phong under distant lights,
-//! shaded from a few scalars per pixel instead of vectors, at every lane width.
+//! The float paths' narrow kernel: classic Phong and Blinn-Phong, and Lambert, under
+//! distant lights, shaded from a few scalars per pixel instead of vectors, at every lane
+//! width.
 //!
 //! # Why it exists
 //!
@@ -14,7 +15,7 @@
 //! # When it applies
 //!
 //! A frame takes it ([`Prepared`]'s `narrow`) when every light is distant and every sphere
-//! uses a classic model, the camera is outside every sphere, no sphere's highlight is too
+//! uses a classic model or Lambert (shaded as a classic sphere with no lobe), the camera is outside every sphere, no sphere's highlight is too
 //! sharp for it (`ks·ΣI·n` within [`SHARPEST`](super::prepare::SHARPEST)). Other frames take the general kernel.
 //! The conditions are frame-wide, and each lane's result depends only on its own pixel
 //! (never on which candidates its packet has), so the scalar and SIMD paths stay
@@ -289,7 +290,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             filters: self.narrow_lights.get(k)?,
             hitting: Hitting {
                 kd_albedo: Vec3::splat(p.kd_albedo),
-                ks: W::Lane::splat(p.ks),
+                ks: W::Lane::splat(n.ks),
                 shininess: W::Lane::splat(p.shininess),
                 blinn: W::Lane::splat(0.0).lt(W::Lane::splat(p.blinn)),
                 own_limit: W::Lane::splat(n.own_limit),
@@ -417,7 +418,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 value(&|s| s.params.kd_albedo.y),
                 value(&|s| s.params.kd_albedo.z),
             ),
-            ks: value(&|s| s.params.ks),
+            ks: value(&|s| s.narrow.as_ref().map_or(0.0, |n| n.ks)),
             shininess: value(&|s| s.params.shininess),
             blinn: zero.lt(value(&|s| s.params.blinn)),
             own_limit: value(&|s| s.narrow.as_ref().map_or(0.0, |n| n.own_limit)),

@@ -17,7 +17,7 @@ use super::lane::{Lane, Rooted, SquareRoot};
 use crate::brdf::Params;
 use crate::pixel::LinearRgb;
 use crate::render::{Kernel, RenderError, MAX_DIMENSION};
-use crate::scene::{Item, Light, Scene};
+use crate::scene::{Item, Light, Model, Scene};
 use crate::vec3::Vec3;
 use core::cmp::Ordering;
 use core::marker::PhantomData;
@@ -188,6 +188,9 @@ pub(crate) struct NarrowSphere {
     pub radius: f32,
     /// `1 − r²/(r + ε)²`: `(N·L)²` above it, with `N·L < 0`, is in the own shadow.
     pub own_limit: f32,
+    /// The lobe's weight: `ks`, or 0 for Lambert, which the narrow kernel shades as a
+    /// classic sphere of diffuse weight `kd·albedo/π` and no lobe.
+    pub ks: f32,
 }
 
 /// A sphere's constants for one light: the caster filter (see the fixed path's
@@ -425,7 +428,15 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             *t = to_light;
             intensity += arriving.x.max(arriving.y).max(arriving.z);
         }
-        if let Some(i) = self.spheres.iter().position(|s| s.normalized) {
+        let lambert = |i: usize| {
+            scene
+                .spheres()
+                .get(i)
+                .is_some_and(|s| matches!(s.material.model, Model::Lambert))
+        };
+        if let Some(i) = (0..self.spheres.len())
+            .find(|&i| self.spheres.get(i).is_some_and(|s| s.normalized) && !lambert(i))
+        {
             return Err((Item::Sphere(i), "model"));
         }
         let sx = self.right.scale(self.x_scale / self.width_f);
@@ -438,8 +449,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             };
             let r = 1.0 / s.inv_radius;
             let oc = s.eye_offset;
+            let ks = if lambert(i) { 0.0 } else { s.params.ks };
             // A NaN sharpness takes the general kernel.
-            let sharp = s.params.ks * intensity * s.params.shininess;
+            let sharp = ks * intensity * s.params.shininess;
             let within = matches!(
                 sharp.partial_cmp(&SHARPEST),
                 Some(Ordering::Less | Ordering::Equal)
@@ -463,6 +475,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 origin: if origin.is_finite() { origin } else { 0.0 },
                 radius: r,
                 own_limit: eps * (2.0 * r + eps) / ((r + eps) * (r + eps)),
+                ks,
             };
             let mut lights = [NarrowLight::default(); L];
             for (k, (nl, t)) in lights.iter_mut().zip(&to_light).enumerate() {
