@@ -57,9 +57,8 @@
 //! program that renders with an encoding other than the default: each path's row function
 //! is instantiated apart for the default, with the encoding a constant there, and
 //! [`Render::render_line`](crate::Render::render_line) on an unwrapped frame reaches only
-//! that one. In the M0 demo an sRGB-dithered frame costs 7,718 bytes of code and 8,212 of
-//! read-only data more than the default (`.ci/firmware` checks that no demo links the
-//! table). Per pixel, a
+//! that one. An sRGB-dithered frame costs the M0 demo the sRGB table and its code
+//! (`docs/performance.md, "Choices measured"`; `.ci/firmware` checks that no demo links the table). Per pixel, a
 //! non-default encoding costs per channel a table lookup (sRGB) and two integer
 //! multiplications, on top of the default's packet-wide `f32` quantization.
 

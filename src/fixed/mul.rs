@@ -8,17 +8,14 @@
 //! of these.) On targets with a widening multiply instruction these are the plain
 //! `i64`/`u64` products. On ARMv6-M and ARMv8-M Baseline (`cfg(shadeline_short_mul)`, set by
 //! the build script), whose only multiplier is 32×32→32, a 64-bit product is otherwise a call
-//! to `__aeabi_lmul` (a full 64×64 product, about 40 instructions with the call); here it is
-//! four 16×16→32 `MULS` and the carries between them, about 20 instructions, in one shared
-//! out-of-line routine per signedness ([`mul_uu`], [`mul_ii`], [`mul_iu`]).
+//! to `__aeabi_lmul` (a full 64×64 product); here it is four 16×16→32 `MULS` and the
+//! carries between them, about half the instructions, in one shared out-of-line routine per
+//! signedness ([`mul_uu`], [`mul_ii`], [`mul_iu`]).
 //!
 //! Out of line, not inline at each product, because that is both smaller and faster on ARMv6-M: a
 //! call costs a few instructions, and an inline sequence needs eight registers where the pixel loop
-//! has eight low ones for all its state (the likely reason the inline form was slower; the figures
-//! are what was measured). Measured on the M0 firmware's frame (QEMU counts), the shared routines
-//! against the sequences inline in the narrow kernel: 25,676 against 27,010 bytes of shadeline's
-//! code and 6,730,229 against 6,742,924 instructions at `opt-level = "s"`; 30,478 against 31,696
-//! bytes and 6,566,236 against 6,619,899 instructions at 3.
+//! has eight low ones for all its state (the likely reason the inline form was slower; the
+//! figures are in `docs/performance.md, "Choices measured"`).
 //!
 //! The routines are exact, so a frame is the same bits on every target
 //! (`tests::split_products_are_exact` checks the split form against the plain one on the host).
@@ -193,8 +190,8 @@ fn split_iu(a: i32, b: u32) -> i64 {
 
 /// `a·b` of two `i32` vectors, exact (`|a·b| < 2⁶³`: where it is used, the operands' bounds
 /// say so): for the narrow run's set-up and the prepare's dot products. One routine on
-/// ARMv6-M rather than three products and their sums at each (336 bytes in the run set-up
-/// alone); inline elsewhere.
+/// ARMv6-M rather than three products and their sums at each (smaller, most of all in the
+/// run set-up); inline elsewhere.
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
 pub(crate) fn dot_ii(a: [i32; 3], b: [i32; 3]) -> i64 {

@@ -79,8 +79,8 @@
 //! formulas in 30-bit fractions, from the same exact `|D|²`, `E′`, `G` and `D·L`, with `σ` and
 //! `√E′` from [`super::roots`] instead of the tables (`h` within `2⁻²⁴`, `2⁹` times closer than
 //! the fast one), and the same `pow` as the fast lobe. It forms no vector either, so the
-//! narrow kernel needs none of the full-width kernel's stages. On the exponent series at
-//! 320×240 that is 295 of its 11,840 covered pixels (test `few_pixels_take_the_precise_lobe`).
+//! narrow kernel needs none of the full-width kernel's stages. On the exponent series that is
+//! under 3% of the covered pixels (test `few_pixels_take_the_precise_lobe`).
 //! Every other stage is the fast one, whatever the encoding: a pixel's linear colour does not
 //! depend on the encoding.
 //!
@@ -661,9 +661,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// `N·V`; `None` for the background. Each active track's `E′` moves one pixel right
     /// where the loop reads it; every hit's `t` is compared, the first hit winning a tie.
     /// Out of line (only where spans overlap), except on ARMv6-M: there, inlined into the
-    /// pixel loop, the loop is both smaller and faster (measured on the M0 demo: 126 bytes
-    /// and 211,135 instructions a frame less; on the M4F and RV32 it costs 74,100 and
-    /// 122,235).
+    /// pixel loop, the loop is both smaller and faster; on the M4F and RV32 inlining costs
+    /// instructions (`docs/performance.md, "Choices measured"`).
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn narrow_surface(&self, run: &mut NarrowRun<S, L>) -> Option<Surface> {
@@ -734,8 +733,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let mut shadowed = 0u32;
         // The normal, for caster tests: made at the first that needs it.
         let mut normal: Option<V3<i32>> = None;
-        // Indexed, not zipped: the bound `n ≤ L` lets every index go unchecked, and three
-        // zipped iterators cost the M4F's pixel loop about 60 instructions.
+        // Indexed, not zipped: the bound `n ≤ L` lets every index go unchecked, where three
+        // zipped iterators cost the M4F's pixel loop instructions.
         let n = self.light_count::<N>().min(L);
         for light_index in 0..n {
             let (light, g, dl) = (&lights[light_index], &g[light_index], &dl[light_index]);
@@ -900,7 +899,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
     /// two: `−b/|D| − r·(N·V)`. Only pixels where spans overlap need it. On ARMv6-M, whose
-    /// 64-bit products are calls of shared routines, it is out of line: 12 bytes smaller there.
+    /// 64-bit products are calls of shared routines, it is out of line: smaller there.
     #[cfg_attr(shadeline_short_mul, inline(never))]
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
     fn narrow_t(&self, hit: &Surface, d: V3<i32>) -> i64 {
@@ -976,8 +975,7 @@ const fn sqrt_table() -> [u32; 257] {
 /// `√x` of a Q30 value in `[0, 2³⁰]`, as Q15: the value normalized by an even shift to
 /// `[¼, 1)`, [`SQRT_TABLE`] and linear interpolation (within `2⁻¹⁷` relative: `√''/√ ≥ −4`
 /// on `[¼, 1)`, bins `2⁻⁸` wide), rounded. Out of line on ARMv6-M: the pixel loop calls it
-/// from two places, and one copy is 188 bytes smaller there at no more instructions per
-/// frame (QEMU counts).
+/// from two places, and one copy is smaller there at no more instructions per frame.
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
 fn sqrt_q30(x: u32) -> i32 {
@@ -1118,10 +1116,9 @@ fn front_part(start: u32, end: u32, rises: bool, b_at: impl Fn(u32) -> i64) -> O
 /// product), and `2^-y` from the shared table of `2^(−i/64)` and `e^(−r·ln 2) ≈ 1 − a + a²/2`.
 /// Within `5.4·10⁻⁵` of `powf` for `n` up to 1250 and `7.2·10⁻⁵` at `10⁴` (`g`'s last bit
 /// times `n` beyond: `5·10⁻³` at `10⁶`; test `narrow_lobe_matches_powf`), a few U1F16 steps,
-/// which is the precision the kernel keeps of a lobe. About 80 instructions on ARMv6-M,
-/// against about 300 for the 64-bit `pow::lobe`; out of line there, where it is both smaller
-/// and faster (measured on the M0 demo: 254 bytes and 14,155 instructions a frame less than
-/// inlined in the pixel loop and the precise lobe).
+/// which is the precision the kernel keeps of a lobe. A fraction of the 64-bit `pow::lobe`'s
+/// instructions on ARMv6-M; out of line there, where it is both smaller and faster than
+/// inlined in the pixel loop and the precise lobe (`docs/performance.md, "Choices measured"`).
 #[cfg_attr(shadeline_short_mul, inline(never))]
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 fn narrow_lobe(h: u32, n: Exact) -> u32 {

@@ -107,10 +107,9 @@ pub(crate) fn outline_columns(e: &Quadric, width: u32) -> (u32, u32) {
 ///
 /// On ARMv6-M the span is the sphere's columns as they are, and the kernel tests the
 /// pixels beside the outline: there its miss at a pixel costs about what a step of the
-/// walk does, so the walks would save no instructions (measured on the M0 demo: 6,487,644
-/// a frame with them, 6,491,383 without) and cost 360 bytes of flash. Where a 32×32→64
-/// product is one instruction (Cortex-M4, RV32IM, the host) the walks take 90,578 (M4F) and
-/// 167,880 (RV32) instructions off the demo's frame. Either way a pixel's colour does not
+/// walk does, so the walks would save no instructions and cost flash. Where a 32×32→64
+/// product is one instruction (Cortex-M4, RV32IM, the host) the walks take instructions
+/// off the demo's frame (`docs/performance.md, "Choices measured"`). Either way a pixel's colour does not
 /// depend on the span (`checks/no-models/tests/spans.rs`, which also shows that the
 /// columns hold every hit, since the walks start from them).
 #[inline(always)]

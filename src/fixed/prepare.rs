@@ -179,7 +179,7 @@ struct Divisor {
 
 impl Divisor {
     /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Inlined
-    /// into `quadric`, its one caller (24 bytes smaller on the M0).
+    /// into `quadric`, its one caller (smaller on the M0).
     #[inline(always)]
     fn divide(&self, c: i128) -> Option<i64> {
         let m = c.unsigned_abs();
@@ -521,7 +521,7 @@ fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
 /// rounding. Exact integer arithmetic after the conversion, so the same bits on every
 /// target; a few products instead of the general normalization, for a vector already
 /// within a few ulps of unit length. Inlined on ARMv6-M, where its caller is too (see
-/// `prepare_fields`): 118 bytes smaller there.
+/// `prepare_fields`): smaller there.
 #[cfg_attr(shadeline_short_mul, inline(always))]
 #[cfg_attr(not(shadeline_short_mul), inline(never))]
 fn unit_q30(d: Vec3) -> V3<Unit> {
@@ -602,7 +602,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// Prepares `scene` for a `width × height` image into `self`, in place: what [`new`](Self::new)
     /// returns, without the prepared frame ever being on the stack (the M0 firmware prepares its
-    /// `static` frame this way, with a peak stack of 2,024 bytes). Fails like `new`; on an error
+    /// `static` frame this way). Fails like `new`; on an error
     /// `self` is left [`EMPTY`](Self::EMPTY), never half prepared. Spans are on, whatever
     /// [`with_spans`](Self::with_spans) set before.
     ///
@@ -657,9 +657,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Converts the scene into `self`'s fields (all but the narrow kernel's), and says
     /// whether every primary direction is within `√2` of the central one in length and the
     /// steps below ½, which the narrow kernel needs (see [`Self::prepare_narrow`]).
-    /// Inlined into [`Self::prepare`] on ARMv6-M, where that is 218 bytes smaller at the same
-    /// peak stack (the M0 demo's, 2,024 bytes); out of line elsewhere: inlined, it is copied
-    /// to every place a firmware prepares a frame (the M4F firmware grows by 1,208 bytes).
+    /// Inlined into [`Self::prepare`] on ARMv6-M, where that is smaller at the same peak
+    /// stack; out of line elsewhere: inlined, it is copied to every place a firmware prepares
+    /// a frame (`docs/performance.md, "Choices measured"`).
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_fields(
@@ -944,8 +944,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// says which item and field keep it from them (the first found). `corners`: whether
     /// every primary direction is within `√2` of the central one in length (then
     /// `|D| < 2³⁰` and every narrow format holds) and the steps below ½, from
-    /// [`Self::prepare_fields`]. Inlined into its one caller on ARMv6-M (38 bytes smaller
-    /// there), out of line elsewhere, like `prepare_fields` and for the same reason.
+    /// [`Self::prepare_fields`]. Inlined into its one caller on ARMv6-M (smaller there),
+    /// out of line elsewhere, like `prepare_fields` and for the same reason.
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_narrow(
@@ -1157,7 +1157,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// offset (see [`quadric`]); the field that keeps the sphere from the narrow kernel if
     /// the light is not distant, `G` does not fit (`radius`) or a caster is too close
     /// (`center`, see [`Self::narrow_casters`]). Inlined into the sphere's: its one caller,
-    /// and 54 bytes smaller on the M0 (the peak stack the same).
+    /// and smaller on the M0 (the peak stack the same).
     #[inline(always)]
     fn narrow_light(
         &self,

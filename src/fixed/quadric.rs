@@ -49,8 +49,8 @@ impl Quadric {
     }
 
     /// The state at column offset `x` on the row `y` ([`row`](Self::row), then
-    /// [`step_at`](Self::step_at)). Out of line on ARMv6-M, for its flash (inlined, the M0
-    /// demo's code grows by 180 bytes): once per run, sphere and quadric.
+    /// [`step_at`](Self::step_at)). Out of line on ARMv6-M, for its flash: once per run, sphere
+    /// and quadric.
     #[cfg_attr(not(shadeline_short_mul), inline(always))]
     #[cfg_attr(shadeline_short_mul, inline(never))]
     pub(crate) fn step_at_cell(&self, y: i32, x: i32) -> Step {

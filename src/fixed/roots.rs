@@ -12,8 +12,8 @@
 //! - two Newton steps `y ← y·(3 − u·y²)/2` in 32-bit fractions (error ≤ 1.5·(1.5·2⁻¹⁶)² ≈ 2⁻³⁰).
 //!
 //! Six exact 32×32→64-bit products ([`super::mul`]), no division, no loop, no branch on the
-//! value: on a Cortex-M0 about 120 instructions inline, against a 64-bit division routine for
-//! a plain reciprocal. Measured (tests below): relative error below `3·2⁻³¹` over the whole `u64`
+//! value: on a Cortex-M0 cheaper than the 64-bit division routine a plain reciprocal would
+//! call. Measured (tests below): relative error below `3·2⁻³¹` over the whole `u64`
 //! range for `inv_sqrt`, below `4·2⁻³¹` for `sqrt`.
 
 use super::mul::{leading_zeros, mul_uu};

@@ -165,9 +165,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             };
         };
         // One light (always, at a capacity of one): the loops over lights have a fixed
-        // length. Not on ARMv6-M, where the fixed-length loop made the exponent series 7.8%
-        // dearer (8.02 M against 7.45 M instructions, QEMU): its eight registers were
-        // allocated worse.
+        // length. Not on ARMv6-M, where the fixed-length loop made the exponent series
+        // dearer: its eight registers were allocated worse.
         if cfg!(not(shadeline_short_mul)) && (L == 1 || self.lights.len() == 1) {
             self.narrow_loop::<1, P>(narrow, start, run_pixels, &finish);
         } else {
@@ -204,9 +203,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             };
             // No active track (between the spans of a run that is the row's hull): the
             // background, and the run moved on. On ARMv6-M the single-track path below does
-            // the same per pixel (`NO_TRACK` finds no surface), for 204 bytes less flash and
-            // 14,924 more instructions on the M0 demo; elsewhere this is the faster (M4F
-            // 4,495,918 against 4,914,891, RV32 4,792,082 against 4,937,032).
+            // the same per pixel (`NO_TRACK` finds no surface), for less flash and a few more
+            // instructions; elsewhere this is the faster (`docs/performance.md, "Choices measured"`).
             if cfg!(not(shadeline_short_mul)) && single == Some(NO_TRACK) {
                 for (px, c) in now.iter_mut().zip(column..) {
                     finish(px, Narrow::Done(None), c);

@@ -176,8 +176,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// line, 51 s. A firmware would pay for each copy in flash.
     ///
     /// Cold, because most packets have no edge: the code around the call keeps its
-    /// registers (the anti-aliased firmware frame on a Cortex-M4F, QEMU count: with
-    /// anti-aliasing off 0.2% fewer instructions than inlined, with it on 3.2% more). The
+    /// registers (fewer instructions with anti-aliasing off, a few more with it on, than
+    /// inlined: `docs/performance.md, "Choices measured"`). The
     /// arguments come as a reference to a copy: an address passed to a call keeps the value
     /// in memory on every path.
     #[cold]

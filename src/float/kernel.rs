@@ -39,10 +39,10 @@
 //! scalar paths, a frame with no normalized material at all (one the narrow kernel does not
 //! take: point lights, a highlight past its cap, the camera inside a sphere) is shaded by a
 //! second copy of the kernel that holds none of that code (`shade::<false>`, chosen once per
-//! row): smaller, with more of its values in registers. The classic exponent series shaded
-//! by this kernel costs 5.4% fewer instructions so on a Cortex-M4F (QEMU count) and 6% fewer
-//! on x86-64 (callgrind), for about 7.6 KB more flash per scalar path a firmware renders. The SIMD paths keep one
-//! kernel, which serves them better (3% fewer instructions with AVX2).
+//! row): smaller, with more of its values in registers. Classic frames
+//! shaded so take fewer instructions on a Cortex-M4F and on x86-64, for more flash per
+//! scalar path a firmware renders. The SIMD paths keep one kernel, which serves them better
+//! (the figures: `docs/performance.md, "Choices measured"`).
 //!
 //! Every stage is `#[inline(always)]`: the split into functions is for the reader, and the
 //! compiler sees the packet loop as one function. The one exception is the second and third
@@ -336,9 +336,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     }
 
     /// [`Self::lights`] with its sphere-light branch only in frames that have a sphere
-    /// light. In the light loop of every frame, that branch costs a frame without sphere
-    /// lights 8.6% on a Cortex-M4F (exponent series, QEMU count); dispatched here, once per
-    /// packet, 5.5%.
+    /// light: in the light loop of every frame, that branch costs a frame without sphere
+    /// lights more than dispatched here, once per packet (`docs/performance.md, "Choices measured"`).
     #[inline(always)]
     fn lights_of<const NORMALIZED: bool>(
         &self,

@@ -51,17 +51,15 @@
 //!
 //! The cosines (`N·V`, `N·L`, the lobe's) are within `|ô|·`[`COS_ERROR`] of the exact ones
 //! (test `narrow_cosines_within_their_bound`): the error of an `f32` ray's hit, which the
-//! general kernel has too. Frames up to [`SHARPEST`](super::prepare::SHARPEST) stay within a level of the general
-//! kernel's in 8-bit colour (6 pixels of 410,400 a level apart on random frames) and
-//! within a tenth of a level of the `f64` reference in linear colour
+//! general kernel has too. Frames up to [`SHARPEST`](super::prepare::SHARPEST) stay within
+//! a level of the general kernel's in 8-bit colour and within a tenth of a level of the `f64` reference in linear colour
 //! (`narrow_frames_agree_with_the_general_kernel`; `tests/reference_agreement.rs` and
 //! `tests/paths_agree.rs` check the public paths).
 //!
 //! # Cost
 //!
-//! On a Cortex-M4F (exponent series, 320×240, QEMU count from `.ci/firmware`) the frame
-//! takes 3,745,975 instructions with it and 5,362,121 with the general kernel: the row's
-//! quadrics are made once per row (`narrow_row`, into a buffer the row driver owns), and
+//! It takes about two thirds of the general kernel's instructions on a Cortex-M4F
+//! (`docs/performance.md, "Choices measured"`): the row's quadrics are made once per row (`narrow_row`, into a buffer the row driver owns), and
 //! while a packet's only candidate stays the same sphere its constants are looked up once
 //! (`single`, `shade_single`).
 

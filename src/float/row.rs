@@ -113,7 +113,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         // Frames the narrow kernel takes (see `narrow`) go there. Of the others, on the
         // scalar paths, frames without a normalized material get a general kernel that holds
         // only the classic models' code (see the kernel's module docs). The SIMD paths keep
-        // one general kernel: on x86-64 (AVX2) the lean one costs them 3% more instructions.
+        // one general kernel: on x86-64 (AVX2) the lean one costs them more instructions.
         match self.kernel {
             Kernel::Narrow => self.shade_narrow_runs::<P, PLAIN>(out, run, &row, &spans, &runs),
             Kernel::General { .. } if W::Lane::LANES > 1 || self.normalized => {
