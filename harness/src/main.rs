@@ -195,6 +195,35 @@ fn write_failed(output: &std::path::Path) -> impl FnOnce(std::io::Error) -> Fail
     move |e| Failure::output(format!("{}: error: cannot write: {e}", output.display()))
 }
 
+/// Writes a line to standard output. A reader that has gone away (`shadeline … | head`)
+/// ends the command quietly with success: what it asked for it has; any other write error
+/// is reported and exits with 1.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        stdout_or_exit(format_args!("{}\n", format_args!($($arg)*)))
+    };
+}
+
+/// [`say!`] without the line end.
+macro_rules! say_raw {
+    ($($arg:tt)*) => {
+        stdout_or_exit(format_args!($($arg)*))
+    };
+}
+
+/// Writes `text` to standard output: see [`say!`].
+fn stdout_or_exit(text: std::fmt::Arguments) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_fmt(text).and_then(|()| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("standard output: {e}");
+        std::process::exit(1);
+    }
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     let result = match cli.command {
@@ -346,7 +375,7 @@ fn render(
     png.write_pixels(file.width, file.height, &rgb)
         .map_err(write_failed(output))?;
     let megapixels = f64::from(file.width) * f64::from(file.height) / 1e6;
-    println!(
+    say!(
         "{}x{} {} on {} thread{}: {:.2} ms per frame ({timed}), {:.1} Mpix/s -> {}",
         file.width,
         file.height,
@@ -357,7 +386,7 @@ fn render(
         megapixels / median,
         output.display()
     );
-    println!("{}", paths::kernel_line(path.name, frame.kernel()));
+    say!("{}", paths::kernel_line(path.name, frame.kernel()));
     Ok(())
 }
 
@@ -419,19 +448,19 @@ fn run_compare(input: &Input, output: &std::path::Path, antialias: bool) -> Resu
         images.push(rgb);
     }
     drop(bar);
-    println!(
+    say!(
         "{w}x{h}, {threads} thread{}, against the f64 reference (8-bit levels; time is the \
          median of {RUNS}, or one frame where a frame takes {:.2} s or more)",
         if threads == 1 { "" } else { "s" },
         CHEAP_FRAME
     );
-    print!("{}", compare::table(&rows));
+    say_raw!("{}", compare::table(&rows));
     for note in &notes {
-        println!("{note}");
+        say!("{note}");
     }
     png.write_image(&compare::picture(w, h, &ref_rgb, &images))
         .map_err(write_failed(output))?;
-    println!(
+    say!(
         "wrote {} (top: reference | {}; below each path: |path - reference| x {}; a path \
          that refused the scene is black)",
         output.display(),
@@ -478,11 +507,11 @@ fn compare_edges(file: &SceneFile, threads: usize) -> Result<(), Failure> {
         }
     }
     let t = edges::TRUTH_SAMPLES;
-    println!("\nsilhouettes against the {t}×{t} supersampled truth (8-bit levels):");
+    say!("\nsilhouettes against the {t}×{t} supersampled truth (8-bit levels):");
     if rows.is_empty() {
-        println!("the frame has no silhouette pixels");
+        say!("the frame has no silhouette pixels");
     } else {
-        print!("{}", edges::edge_table(&rows));
+        say_raw!("{}", edges::edge_table(&rows));
     }
     Ok(())
 }
@@ -504,7 +533,7 @@ fn run_plot(
     })?;
     std::fs::write(output, &figure.svg).map_err(write_failed(output))?;
     let curves = figure.exponents.len();
-    println!(
+    say!(
         "sphere {sphere} ({}), light at {incidence}° from the normal: f·cos θ_o peaks at \
          θ_o = {:.2}° (mirror direction {}°); {curves} curve{} of cos^n -> {}",
         figure.material,

@@ -565,3 +565,37 @@ fn repeats_are_reported_as_asked() {
         assert!(report.contains(timed), "{args:?}: {report}");
     }
 }
+
+/// A reader that closes its end of the pipe before the command prints (`shadeline … | head
+/// -0`) ends the command quietly, with success, and the picture is still written.
+#[test]
+fn a_closed_standard_output_ends_the_command_quietly() {
+    let dir = temp_dir("closed_stdout");
+    let mut child = Command::new(env!("CARGO_BIN_EXE_shadeline"))
+        .args([
+            "render",
+            "--preset",
+            "floor",
+            "--width",
+            "320",
+            "--height",
+            "240",
+            "--path",
+            "scalar",
+            "--repeat",
+            "5",
+            "-o",
+            "floor.png",
+        ])
+        .current_dir(&dir)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("the binary runs");
+    // The reader goes away at once: five frames take far longer than this.
+    drop(child.stdout.take());
+    let out = child.wait_with_output().expect("the binary ends");
+    assert!(out.status.success(), "{:?}: {}", out.status, stderr(&out));
+    assert!(stderr(&out).is_empty(), "{}", stderr(&out));
+    assert_eq!(read_png(&dir.join("floor.png")).0, 320);
+}
