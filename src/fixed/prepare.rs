@@ -15,13 +15,11 @@
 
 use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32, to_f32};
 use super::exact::Exact;
-use super::mul::{dot_ii, mul_128, mul_ii, mul_uu};
+use super::mul::{dot_ii, mul_128, mul_ii, mul_iu, mul_uu};
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::quadric::Quadric;
-#[cfg(feature = "full-width")]
-use super::roots::inv_sqrt;
-use super::roots::sqrt;
+use super::roots::{inv_sqrt, sqrt};
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
 use super::vector::{each3, Len, Unit, V3};
@@ -262,6 +260,12 @@ pub(crate) struct NarrowSphere {
     /// floor sphere, and the floor under it): only from these can a lifted point start
     /// inside a caster, which the caster test then checks for (`narrow_blocked`).
     pub touching: u32,
+    /// The margin of the quick caster test (`narrow_blocked`) where this sphere receives a
+    /// shadow, in that test's units ([`PreparedFixed::quick_shift`]): a bound on its
+    /// rounding and on how far the exact test's `|oc|² − b² ≤ r²` reaches beyond the
+    /// caster's cylinder, from the largest `|O − C_k|` the sphere's lifted points can have.
+    /// `−1`: no quick test.
+    pub quick_margin: i32,
 }
 
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
@@ -286,6 +290,10 @@ pub(crate) struct NarrowLight {
     pub ahead: i32,
     /// `(N·L)²` (Q30) above this: no caster is within reach.
     pub reach: u32,
+    /// The sphere's centre across the light, `C·u` and `C·v` in the quick caster test's
+    /// units ([`PreparedFixed::quick_shift`]), `u` and `v` the light's
+    /// [`PreparedFixed::across`]: the quick caster test's constants.
+    pub across: [i32; 2],
 }
 
 /// A sphere's per-frame constants, in scaled units.
@@ -435,6 +443,13 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) narrow: Option<NarrowView>,
     /// Per sphere and light, the narrow kernel's constants (set with `narrow`).
     pub(crate) narrow_lights: heapless::Vec<[NarrowLight; L], S>,
+    /// Per distant light, two unit vectors `u`, `v` (Q15) across it, `L`, `u`, `v` an
+    /// orthonormal basis up to rounding: the quick caster test measures a lifted point's
+    /// distance from a caster's axis along the light in them (set with `narrow`).
+    pub(crate) across: [[[i16; 3]; 2]; L],
+    /// The quick caster test's unit of length, `2^quick_shift` raw: the smallest that
+    /// takes every sphere's `r + ε` below `2¹⁶` units (set with `narrow`).
+    pub(crate) quick_shift: u32,
     pub(crate) use_spans: bool,
     /// Whether silhouettes are anti-aliased ([`PreparedFixed::with_antialiasing`]).
     #[cfg(all(feature = "antialias", feature = "full-width"))]
@@ -595,6 +610,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         kernel: Kernel::Narrow,
         narrow: None,
         narrow_lights: heapless::Vec::new(),
+        across: [[[0; 3]; 2]; L],
+        quick_shift: 0,
         use_spans: true,
         #[cfg(all(feature = "antialias", feature = "full-width"))]
         antialias: false,
@@ -1005,6 +1022,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // same for every sphere.
         let dirs = view.dirs();
         let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a % 3], dirs[b % 3]));
+        let eps = self.epsilon.to_bits() as i64;
+        let lift = self.spheres.iter().map(|s| s.radius.to_bits() as i64 + eps);
+        self.quick_shift = 64u32.saturating_sub(lift.max().unwrap_or(0).leading_zeros() + 16);
+        for (across, light) in self.across.iter_mut().zip(&self.lights) {
+            if let FixedLight::Distant { to_light, .. } = light {
+                *across = across_light(to_light.map(|c| c.to_bits()));
+            }
+        }
         self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
             let m = scene.spheres().get(i).map(|s| s.material);
@@ -1108,6 +1133,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             ((budget / (2.0 * n * H_ERROR)) * 65536.0) as u32
         };
         let narrow = NarrowSphere {
+            quick_margin: self.quick_margin(i),
             touching: self.touching(i),
             fast_lobe_max,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
@@ -1129,6 +1155,46 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             None => return Err("center"),
         }
         Ok(())
+    }
+
+    /// [`NarrowSphere::quick_margin`] of sphere `i`, in the quick test's units (`2^s` raw,
+    /// `s` the frame's `quick_shift`): with `Ω` the largest `|O − C_k|` over its lifted
+    /// points `O` and the casters `k` (at most the largest distance of centres plus
+    /// `r + ε`), `17 + Ω·2⁻¹¹ + 2√(2Ω + 1)`, each in units. The quick test's own rounding
+    /// is below 10 units; `u` and `v` are within `2⁻¹⁴` of an exact basis across the
+    /// light, which moves a distance by `Ω·2⁻¹⁴`; and the exact test's `b`, rounded down to
+    /// a raw unit, and `|L|`'s distance from 1 let it block a ray up to
+    /// `√(2Ω + 1) + Ω·2⁻¹⁴` raw beyond the caster's radius. Each term is doubled or more.
+    /// `−1` where the test is off or the radius too large for its units.
+    fn quick_margin(&self, i: usize) -> i32 {
+        let Some(own) = self.spheres.get(i) else {
+            return -1;
+        };
+        let lift = own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64;
+        let shift = self.quick_shift;
+        if !QUICK_CASTER_TEST || lift >> shift >= 1 << 16 {
+            return -1;
+        }
+        // Only a receiver four times the radius of each of its casters (a floor under the
+        // spheres resting on it) takes the test: most of its pixels lie far from every
+        // caster's cylinder, where the test saves the exact one; on spheres of like sizes
+        // it costs more than it saves.
+        let casters = self
+            .narrow_lights
+            .get(i)
+            .map_or(0, |l| l.iter().fold(0, |m, l| m | l.casters));
+        let mut far = 0u64;
+        for (k, s) in self.spheres.iter().enumerate() {
+            if k < 32 && casters & (1 << k) != 0 && s.radius.to_bits() > own.radius.to_bits() / 4 {
+                return -1;
+            }
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(s.center[j].to_bits()));
+            far = far.max(d.iter().map(|&v| mul_ii(v, v) as u64).sum::<u64>());
+        }
+        // Centres within 2³⁰ raw of each other: Ω below 2³¹.
+        let omega = sqrt(far) + 1 + lift as u64;
+        let root = sqrt(2 * omega + 1) + 1;
+        (16 + ((omega >> shift) >> 11) + ((2 * root) >> shift) + 1).min(i32::MAX as u64) as i32
     }
 
     /// The spheres whose surface comes within `4ε` of sphere `i`'s (bit `k` for sphere `k`,
@@ -1178,12 +1244,21 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let ld = view.dirs().map(|d| dot_ii(l, d));
         quadric((oc_l, gram, b), Form::G(&ld), g_den, &mut g).ok_or("radius")?;
         let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
+        let shift = 15 + self.quick_shift;
+        let across = self.across.get(light).map_or([0; 2], |uv| {
+            // C·u in raw units times 2¹⁵ (|C| < 2³⁰ raw), to the quick test's units.
+            uv.map(|u| {
+                let c = own.center.map(|c| c.to_bits());
+                ((dot_ii(c, u.map(i32::from)) + (1 << (shift - 1))) >> shift) as i32
+            })
+        });
         Ok(NarrowLight {
             g,
             arriving: arriving.map(|c| c.to_bits()),
             casters,
             ahead,
             reach,
+            across,
         })
     }
 
@@ -1314,6 +1389,44 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     pub fn set_antialiasing(&mut self, on: bool) {
         self.antialias = on;
     }
+}
+
+/// Whether the narrow kernel takes the quick caster test (`narrow_blocked`): on ARMv6-M,
+/// where each 32×32→64-bit product of the exact test is a call, it saves most of a floor's
+/// caster tests, and on RV32, whose 64-bit product is two instructions, some; with the
+/// Cortex-M4's one-instruction product the exact test is about as cheap, and the quick one
+/// costs the loop more than it saves (`docs/performance.md`, "Choices measured"). The
+/// crate's own tests turn it on everywhere, to hold it to changing no pixel.
+pub(crate) const QUICK_CASTER_TEST: bool =
+    cfg!(any(shadeline_short_mul, target_arch = "riscv32", test));
+
+/// Two unit vectors across the unit vector `l` (Q30), in Q15: `u = (l × e)/|l × e|` for the
+/// axis `e` least along `l` (so `|l × e|² ≥ 2/3`), and `v = l × u`. Each is within `2⁻¹⁵`
+/// of the exact basis across `l/|l|` in length (rounding down to Q15, `inv_sqrt`'s error,
+/// and `|l|` within `2⁻²⁹` of 1).
+fn across_light(l: [i32; 3]) -> [[i16; 3]; 2] {
+    let [x, y, z] = l;
+    let m = l.map(|c| c.unsigned_abs());
+    // Components of a unit vector in Q30: negating one cannot overflow.
+    let w = if m[0] <= m[1] && m[0] <= m[2] {
+        [0, z, -y]
+    } else if m[1] <= m[2] {
+        [-z, 0, x]
+    } else {
+        [y, -x, 0]
+    };
+    let len2 = w.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>();
+    let unit = |c: i64| c.clamp(-(1 << 15) + 1, (1 << 15) - 1) as i32;
+    // w·(1/|w|) in Q15: `inv_sqrt`'s `v·y >> (shift − 15)`, `shift` at least 31.
+    let (inv, shift) = inv_sqrt(len2).unwrap_or((0, 31));
+    let [u0, u1, u2] = w.map(|c| unit(mul_iu(c, inv) >> (shift - 15)));
+    let cross = |a: i32, b: i32, c: i32, d: i32| unit((mul_ii(a, b) - mul_ii(c, d)) >> 30);
+    let v = [
+        cross(y, u2, z, u1),
+        cross(z, u0, x, u2),
+        cross(x, u1, y, u0),
+    ];
+    [[u0, u1, u2].map(|c| c as i16), v.map(|c| c as i16)]
 }
 
 #[cfg(test)]
