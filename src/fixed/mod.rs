@@ -146,6 +146,7 @@ mod exact;
 mod kernel;
 mod mul;
 mod narrow;
+mod narrow_prepare;
 #[cfg(not(feature = "full-width"))]
 mod outline;
 mod pow;

@@ -102,10 +102,9 @@
 
 use super::exact::{shift_saturating, Exact};
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
+use super::narrow_prepare::QUICK_CASTER_TEST;
 use super::pow::{EXP_TABLE, INV_LN2_F31, LOG_TABLE};
-use super::prepare::{
-    FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed, QUICK_CASTER_TEST,
-};
+use super::prepare::{FixedLight, FixedSphere, NarrowSphere, NarrowView, PreparedFixed};
 use super::quadric::Step;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{each3, V3};
@@ -1405,7 +1404,7 @@ mod tests {
     /// prepare's cutoff and lobe test rely on), `N·L` within `8·2⁻¹⁵`.
     #[test]
     fn fast_h_within_its_bound() {
-        use crate::fixed::prepare::H_ERROR;
+        use crate::fixed::narrow_prepare::H_ERROR;
         let mut frames = random_frames(0x853c_49e6_748f_ea9b, 200);
         frames.push(PreparedFixed::new(&crate::exponent_series().unwrap(), 320, 240).unwrap());
         let (mut worst_h, mut worst_nl, mut count) = (0.0f64, 0.0f64, 0usize);

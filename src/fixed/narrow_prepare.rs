@@ -1,0 +1,866 @@
+//! The fixed path's prepare for its narrow kernel ([`super::narrow`]): whether a frame
+//! takes it, and its constants: each sphere's exact quadrics `E′` and, per light, `G`
+//! ([`quadric`], in `i128` from the frame's integer geometry), the caster filters and the
+//! quick caster test's constants, and the lobe's cutoffs. The rest of the prepare (the
+//! scene in fixed point, the spans) is in [`super::prepare`]; this part runs after it, on
+//! its scaled integers.
+
+use super::convert::to_f32;
+use super::mul::{dot_ii, mul_128, mul_ii, mul_iu, mul_uu};
+#[cfg(not(feature = "full-width"))]
+use super::outline::{outline_columns, outline_rows};
+use super::prepare::{
+    FixedLight, FixedSphere, NarrowLight, NarrowSphere, NarrowView, PreparedFixed,
+};
+use super::quadric::Quadric;
+use super::roots::{inv_sqrt, sqrt};
+use super::vector::{each3, Unit, V3};
+use crate::scene::{Item, Model, Scene};
+use fixed::types::I16F48;
+
+/// The largest error of the narrow kernel's fast `h = 1 − cos` (Phong's `1 − R·V`,
+/// Blinn-Phong's `1 − N·H` where `|L + V| ≥ ¾`), `6·2⁻¹⁵`: checked by the narrow module's
+/// `fast_h_within_its_bound` on the exponent series and on random frames. The prepare's lobe
+/// cutoff and the test of whether a sphere's lobe needs the precise `h` use it.
+pub(crate) const H_ERROR: f32 = 6.0 / 32768.0;
+
+/// `v` (I16F48 bits, each component below 2 in magnitude) rounded to Q29, the narrow
+/// kernel's directions. Out of line on ARMv6-M: three vectors a frame.
+#[cfg_attr(shadeline_short_mul, inline(never))]
+fn to_q29(v: V3<I16F48>) -> [i32; 3] {
+    // ((c >> 18) + 1) >> 1 is (c + 2¹⁸) >> 19, with no overflow near `i64::MAX`.
+    v.map(|c| (((c.to_bits() >> 18) + 1) >> 1) as i32)
+}
+
+/// An `h` (Q31) from which a lobe of exponent `n` times `ks_intensity` (`ks` times the sum
+/// of the lights' brightest channels) is below `τ = 2⁻¹⁷`, half a U16F16 step, allowing for
+/// the fast `h`'s error ([`H_ERROR`]).
+///
+/// `(1 − h)ⁿ < τ/k` from `h = 1 − e^(−x)` on, `x = ln(k/τ)/n`; that is below
+/// `x − x²/2 + x³/6` (the series alternates with falling terms for `x < 3`), and
+/// `ln(k/τ) = ln 2·log₂(k/τ)` is at most `ln 2·e + (m − 1)` for `k/τ = m·2^e`, `m` in
+/// `[1, 2)` (as `ln m ≤ m − 1`, within 0.06). So this bound, a few `f32` operations on the
+/// number's bits, is never below the true cutoff: it only shades a few more pixels' lobes
+/// (to 0) than needed, and needs no `powf`.
+fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
+    let ratio = ks_intensity * 131_072.0; // k/τ
+    if ratio.is_nan() || ratio <= 1.0 || n.is_nan() || n <= 0.0 {
+        return 0;
+    }
+    let bits = ratio.to_bits();
+    let e = ((bits >> 23) & 0xff) as i32 - 127;
+    let m = f32::from_bits((bits & 0x7f_ffff) | (127 << 23)); // in [1, 2)
+    let x = (e as f32 * core::f32::consts::LN_2 + (m - 1.0)) / n;
+    // From x = 1.5 on, 1: the whole lit lobe (the true cutoff is above 0.77 there).
+    let h = if x < 1.5 {
+        x - x * x * (0.5 - x / 6.0)
+    } else {
+        1.0
+    } + 2.0 * H_ERROR;
+    (h * (1u64 << 31) as f32) as u32
+}
+
+/// The index pairs `(a, b)` of a quadric's coefficients in the order of [`Quadric::c`]:
+/// `c₀₀` from the directions `(0, 0)`, `c₁₀` from `(0, 1)` …, `c₀₂` from `(2, 2)`.
+const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
+
+/// Which of a sphere's two quadrics [`quadric`] makes (see [`Quadric`]). By the identities
+/// of Lagrange and Binet–Cauchy, `|oc × D|² = |oc|²·|D|² − (oc·D)²` and
+/// `(oc × D)·(L × D) = (oc·L)·|D|² − (oc·D)(L·D)`, so both come from dot products alone:
+enum Form<'a> {
+    /// `E′·r²·2⁵⁸ = r²·|D|² − |oc × D|² = (r² − |oc|²)·|D|² + (oc·D)²`.
+    E,
+    /// `G·r·2⁸⁸ = (oc × D)·(L × D) = (oc·L)·|D|² − (oc·D)(L·D)`, with `L·Dₐ` for each of
+    /// the three directions.
+    G(&'a [i64; 3]),
+}
+
+/// A sphere's quadric `form` over `den`, for `D = dc + x·sx + y·sy`: from `s` (`r² − |oc|²`
+/// for `E′`, `oc·L` for `G`), the Gram matrix `gram` of the three directions (`Dₐ·D_b` in
+/// the order of [`PAIRS`]) and `b`, their dot products with `oc`. Each raw coefficient is
+/// exact in `i128`: `s·(Dₐ·D_b) ± sym(bₐ·v_b)`, doubled off the diagonal, with `v = b` for
+/// `E′` and `v = L·D` for `G` (below `2¹²⁷`: `|s| < 2⁶²`; `|Dₐ·D_b|`, `|bₐ|` and `|L·Dₐ|`
+/// below `3·2⁶⁰`). Each is divided as soon as it is made (one `i128` at a time on the
+/// stack), into `c`. One loop over [`PAIRS`] for both, for the flash: once per sphere and
+/// per sphere and light. `None` if a coefficient does not fit.
+#[inline(never)]
+fn quadric(
+    (s, gram, b): (i64, &[i64; 6], &[i64; 3]),
+    form: Form,
+    den: &Divisor,
+    c: &mut Quadric,
+) -> Option<()> {
+    let v = match form {
+        Form::E => b,
+        Form::G(l) => l,
+    };
+    for ((slot, &(i, k)), &dot) in c.c.iter_mut().zip(&PAIRS).zip(gram) {
+        let (i, k) = (i % 3, k % 3);
+        // The symmetric product; for `E′`, `v` is `b` and its two halves are equal.
+        let mut raw = mul_128(b[i], v[k]);
+        if i != k {
+            raw += match form {
+                Form::E => raw,
+                Form::G(_) => mul_128(b[k], v[i]),
+            };
+        }
+        // |Dₐ·D_b| < 3·2⁶⁰: doubled, it fits `i64`.
+        let scaled = mul_128(s, if i == k { dot } else { 2 * dot });
+        raw = match form {
+            Form::E => scaled + raw,
+            Form::G(_) => scaled - raw,
+        };
+        *slot = den.divide(raw)?;
+    }
+    Some(())
+}
+
+/// A positive divisor `dᵏ·2^z` (`d` below `2³²`, `k` one or two, `z` below 64): the
+/// prepare divides each of a sphere's quadric coefficients by `r²` or `r` times a power of
+/// two. The quotient is exact, rounded toward zero: the dividend's magnitude is divided as
+/// four 32-bit limbs, each one 64/32-bit division (the runtime's `u64` division, which a
+/// 32-bit core links anyway), `k` times over, then shifted. No 128-bit division routine
+/// (a long one on a 32-bit core) and no reciprocal to make.
+struct Divisor {
+    d: u32,
+    passes: u32,
+    z: u32,
+}
+
+impl Divisor {
+    /// `c` over the divisor, rounded toward zero; `None` if it does not fit `i64`. Inlined
+    /// into `quadric`, its one caller (smaller on the M0).
+    #[inline(always)]
+    fn divide(&self, c: i128) -> Option<i64> {
+        let m = c.unsigned_abs();
+        let mut limbs = [
+            (m >> 96) as u32,
+            (m >> 64) as u32,
+            (m >> 32) as u32,
+            m as u32,
+        ];
+        // The prepare's radii are at least one unit (2¹⁶ raw): the `max` only shows the
+        // compiler that the division cannot be by 0.
+        let d = self.d.max(1) as u64;
+        for _ in 0..self.passes {
+            // Each step's dividend is below d·2³², so its quotient fits a limb.
+            let mut rest = 0u64;
+            for limb in &mut limbs {
+                let part = (rest << 32) | *limb as u64;
+                *limb = (part / d) as u32;
+                rest = part % d;
+            }
+        }
+        let [a, b, c2, c3] = limbs;
+        let (high, low) = (
+            ((a as u64) << 32) | b as u64,
+            ((c2 as u64) << 32) | c3 as u64,
+        );
+        // (high·2⁶⁴ + low) >> z is below 2⁶³ iff high is below 2^(z − 1) (for z = 0:
+        // high is 0 and low below 2⁶³).
+        let z = self.z.min(63);
+        let q = match z {
+            0 => (high == 0).then_some(low),
+            _ => (high >> (z - 1) == 0).then_some((high << (64 - z)) | (low >> z)),
+        }?;
+        let q = i64::try_from(q).ok()?;
+        Some(if c < 0 { -q } else { q })
+    }
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Sets up the narrow kernel ([`super::narrow`]) if the frame meets its conditions, or
+    /// says which item and field keep it from them (the first found). `corners`: whether
+    /// every primary direction is within `√2` of the central one in length (then
+    /// `|D| < 2³⁰` and every narrow format holds) and the steps below ½, from
+    /// [`Self::prepare_fields`]. Inlined into its one caller on ARMv6-M (smaller there),
+    /// out of line elsewhere, like `prepare_fields` and for the same reason.
+    #[cfg_attr(shadeline_short_mul, inline(always))]
+    #[cfg_attr(not(shadeline_short_mul), inline(never))]
+    pub(super) fn prepare_narrow(
+        &mut self,
+        scene: &Scene<S, L>,
+        corners: bool,
+    ) -> Result<(), (Item, &'static str)> {
+        // Without the full-width kernel `prepare_fields` has refused these already.
+        #[cfg(feature = "full-width")]
+        if let Some(light) = self
+            .lights
+            .iter()
+            .position(|l| !matches!(l, FixedLight::Distant { .. }))
+        {
+            return Err((Item::Light(light), "type"));
+        }
+        // Lambert shades as a classic sphere with no lobe (`Params::lambert`, and no cutoff
+        // below); the other normalized models need the full-width kernel.
+        #[cfg(feature = "full-width")]
+        if let Some(sphere) = self
+            .spheres
+            .iter()
+            .zip(scene.spheres())
+            .position(|(s, m)| s.normalized && !matches!(m.material.model, Model::Lambert))
+        {
+            return Err((Item::Sphere(sphere), "model"));
+        }
+        // The narrow run indexes its tracks by `u8`.
+        if self.spheres.len() > 256 {
+            return Err((Item::Sphere(256), "center"));
+        }
+        if !corners {
+            return Err((Item::Camera, "vfov"));
+        }
+        // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector: each
+        // component of `forward` at most 2²⁹ and of a step below 2²⁸ (`corners`).
+        let view = NarrowView {
+            forward: to_q29(self.forward),
+            step_x: to_q29(self.step_x),
+            step_y: to_q29(self.step_y),
+        };
+        // Each light's brightest channel, the largest level converted (the conversion is
+        // monotonic, so it is the largest of the converted levels).
+        let intensity: f32 = self
+            .lights
+            .iter()
+            .map(|l| match l {
+                FixedLight::Distant { arriving, .. } => {
+                    let brightest = arriving.iter().map(|c| c.to_bits()).max().unwrap_or(0);
+                    to_f32(brightest as i64, 16)
+                }
+                // Never reached: the narrow kernel takes distant lights only (checked above).
+                _ => 0.0,
+            })
+            .sum();
+        // The Gram matrix of the quadrics' three directions, in the order of `PAIRS`: the
+        // same for every sphere.
+        let dirs = view.dirs();
+        let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a % 3], dirs[b % 3]));
+        let eps = self.epsilon.to_bits() as i64;
+        let lift = self.spheres.iter().map(|s| s.radius.to_bits() as i64 + eps);
+        self.quick_shift = 64u32.saturating_sub(lift.max().unwrap_or(0).leading_zeros() + 16);
+        for (across, light) in self.across.iter_mut().zip(&self.lights) {
+            if let FixedLight::Distant { to_light, .. } = light {
+                *across = across_light(to_light.map(|c| c.to_bits()));
+            }
+        }
+        self.narrow_lights.clear();
+        for i in 0..self.spheres.len() {
+            let m = scene.spheres().get(i).map(|s| s.material);
+            let n = m.map_or(1.0, |m| m.shininess);
+            // A Lambert sphere has no lobe: no light's `h` is below a cutoff of 0.
+            let intensity = match m {
+                Some(m) if matches!(m.model, Model::Lambert) => 0.0,
+                _ => intensity,
+            };
+            self.prepare_narrow_sphere(i, (&view, &gram), (n, intensity))
+                .map_err(|field| (Item::Sphere(i), field))?;
+        }
+        self.narrow = Some(view);
+        Ok(())
+    }
+
+    /// Sphere `i`'s narrow constants, from the frame's narrow view and its shininess `n`
+    /// and the sum of the lights' brightest channels: `false` if the sphere does not meet
+    /// the narrow kernel's conditions or a number does not fit. Out of line (and the
+    /// quadrics' arithmetic further out) to keep the prepare's stack small.
+    #[inline(never)]
+    fn prepare_narrow_sphere(
+        &mut self,
+        i: usize,
+        (view, gram): (&NarrowView, &[i64; 6]),
+        (n, intensity): (f32, f32),
+    ) -> Result<(), &'static str> {
+        let Some(s) = self.spheres.get(i) else {
+            return Err("center");
+        };
+        let (eye_offset, ks) = (s.eye_offset, s.ks);
+        let eps = self.epsilon.to_bits() as i64;
+        let oc = eye_offset.map(|c| c.to_bits() as i64);
+        let r = s.radius.to_bits() as i64;
+        // |oc|² < 3·2⁶⁰: the scene lies within 2¹³ units.
+        let oc_len2 = oc.iter().map(|&c| mul_ii(c as i32, c as i32)).sum::<i64>();
+        if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
+            return Err("center");
+        }
+        // ⌈log₂ max(1, |ô|²)⌉: below 28, since the scene lies within 2¹³ units and r ≥ 1
+        // unit.
+        let r2 = mul_ii(r as i32, r as i32);
+        let ratio = (oc_len2 + r2 - 1).checked_div(r2).unwrap_or(0).max(1) as u64;
+        let log_sq = 64 - (ratio - 1).leading_zeros();
+        let e_shift = 29u32.saturating_sub(log_sq);
+        let g_shift = 28u32.saturating_sub(log_sq.div_ceil(2));
+        // Scale 2^(29 + e_shift)/(r²·2⁵⁸); G's 2^(29 + g_shift)/(r·2⁸⁸).
+        let (e_den, g_den) = (
+            Divisor {
+                d: r as u32,
+                passes: 2,
+                z: 29 - e_shift,
+            },
+            Divisor {
+                d: r as u32,
+                passes: 1,
+                z: 59 - g_shift,
+            },
+        );
+        // The quadrics over D = dc + x·sx + y·sy, expanded at the centre of the screen
+        // (`dx = dy = 0`), from b = oc·D in each direction (see `Form`).
+        let oc32 = eye_offset.map(|c| c.to_bits());
+        let b = view.dirs().map(|d| dot_ii(oc32, d));
+        let mut e = Quadric::default();
+        if quadric((r2 - oc_len2, gram, &b), Form::E, &e_den, &mut e).is_none() {
+            return Err("radius");
+        }
+        if self
+            .narrow_lights
+            .push([NarrowLight::default(); L])
+            .is_err()
+        {
+            return Err("radius");
+        }
+        for light_index in 0..self.lights.len().min(L) {
+            let light = self.narrow_light(i, light_index, (view, gram, &b), &g_den)?;
+            match self
+                .narrow_lights
+                .get_mut(i)
+                .and_then(|l| l.get_mut(light_index))
+            {
+                Some(slot) => *slot = light,
+                None => return Err("center"),
+            }
+        }
+        let bits = 64 - r.leading_zeros();
+        let (rf, ef) = (r as f32, eps as f32);
+        let ks_intensity = to_f32(ks.to_bits() as i64, 16) * intensity;
+        let cutoff = lobe_cutoff(ks_intensity, n);
+        // The fast lobe's error, in levels of the brightest channel: its slope
+        // n·(1 − h)^(n − 1) times h's error, and the narrow `pow`'s own (module `narrow`).
+        // The slope is at most n (at h = 0), and at most 2n times the lobe where h ≤ ½.
+        // Above n = 256, the range the `pow`'s bound of 1.4·10⁻⁴ is held on, every pixel
+        // below the cutoff takes the precise lobe.
+        let budget = 0.5 / (ks_intensity * 255.0) - 1.4e-4;
+        let fast_lobe_max = if n > 256.0 || budget.is_nan() || budget <= 0.0 {
+            0
+        } else if n * H_ERROR <= budget {
+            u32::MAX
+        } else {
+            ((budget / (2.0 * n * H_ERROR)) * 65536.0) as u32
+        };
+        let narrow = NarrowSphere {
+            quick_margin: self.quick_margin(i),
+            touching: self.touching(i),
+            fast_lobe_max,
+            shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
+                as u32,
+            cutoff,
+            e_shift,
+            g_shift,
+            cross_shift: bits + 14,
+            gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
+            b_rises: b[1] > 0,
+            #[cfg(not(feature = "full-width"))]
+            rows: outline_rows(&e, self.height),
+            #[cfg(not(feature = "full-width"))]
+            columns: outline_columns(&e, self.width),
+            e,
+        };
+        match self.spheres.get_mut(i) {
+            Some(s) => s.narrow = Some(narrow),
+            None => return Err("center"),
+        }
+        Ok(())
+    }
+
+    /// [`NarrowSphere::quick_margin`] of sphere `i`, in the quick test's units (`2^s` raw,
+    /// `s` the frame's `quick_shift`): with `Ω` the largest `|O − C_k|` over its lifted
+    /// points `O` and the casters `k` (at most the largest distance of centres plus
+    /// `r + ε`), `17 + Ω·2⁻¹¹ + 2√(2Ω + 1)`, each in units. The quick test's own rounding
+    /// is below 10 units; `u` and `v` are within `2⁻¹⁴` of an exact basis across the
+    /// light, which moves a distance by `Ω·2⁻¹⁴`; and the exact test's `b`, rounded down to
+    /// a raw unit, and `|L|`'s distance from 1 let it block a ray up to
+    /// `√(2Ω + 1) + Ω·2⁻¹⁴` raw beyond the caster's radius. Each term is doubled or more.
+    /// `−1` where the test is off or the radius too large for its units.
+    fn quick_margin(&self, i: usize) -> i32 {
+        let Some(own) = self.spheres.get(i) else {
+            return -1;
+        };
+        let lift = own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64;
+        let shift = self.quick_shift;
+        if !QUICK_CASTER_TEST || lift >> shift >= 1 << 16 {
+            return -1;
+        }
+        // Only a receiver four times the radius of each of its casters (a floor under the
+        // spheres resting on it) takes the test: most of its pixels lie far from every
+        // caster's cylinder, where the test saves the exact one; on spheres of like sizes
+        // it costs more than it saves.
+        let casters = self
+            .narrow_lights
+            .get(i)
+            .map_or(0, |l| l.iter().fold(0, |m, l| m | l.casters));
+        let mut far = 0u64;
+        for (k, s) in self.spheres.iter().enumerate() {
+            if k < 32 && casters & (1 << k) != 0 && s.radius.to_bits() > own.radius.to_bits() / 4 {
+                return -1;
+            }
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(s.center[j].to_bits()));
+            far = far.max(d.iter().map(|&v| mul_ii(v, v) as u64).sum::<u64>());
+        }
+        // Centres within 2³⁰ raw of each other: Ω below 2³¹.
+        let omega = sqrt(far) + 1 + lift as u64;
+        let root = sqrt(2 * omega + 1) + 1;
+        (16 + ((omega >> shift) >> 11) + ((2 * root) >> shift) + 1).min(i32::MAX as u64) as i32
+    }
+
+    /// The spheres whose surface comes within `4ε` of sphere `i`'s (bit `k` for sphere `k`,
+    /// the first 32), from the exact squared distance of the centres.
+    fn touching(&self, i: usize) -> u32 {
+        let Some(own) = self.spheres.get(i) else {
+            return 0;
+        };
+        let eps = self.epsilon.to_bits() as i64;
+        let mut mask = 0;
+        for (k, s) in self.spheres.iter().enumerate().take(32) {
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(s.center[j].to_bits()));
+            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
+            // Radii below 2²⁹ raw and ε far below: the sum fits an `i32`.
+            let apart = (own.radius.to_bits() as i64 + s.radius.to_bits() as i64 + 4 * eps)
+                .min(i32::MAX as i64) as i32;
+            if k != i && len2 <= mul_ii(apart, apart) {
+                mask |= 1 << k;
+            }
+        }
+        mask
+    }
+
+    /// Sphere `i`'s narrow constants for light `light`, from the frame's narrow view, the
+    /// Gram matrix of its three directions and their dot products `b` with the sphere's eye
+    /// offset (see [`quadric`]); the field that keeps the sphere from the narrow kernel if
+    /// the light is not distant, `G` does not fit (`radius`) or a caster is too close
+    /// (`center`, see [`Self::narrow_casters`]). Inlined into the sphere's: its one caller,
+    /// and smaller on the M0 (the peak stack the same).
+    #[inline(always)]
+    fn narrow_light(
+        &self,
+        i: usize,
+        light: usize,
+        (view, gram, b): (&NarrowView, &[i64; 6], &[i64; 3]),
+        g_den: &Divisor,
+    ) -> Result<NarrowLight, &'static str> {
+        let Some(FixedLight::Distant { to_light, arriving }) = self.lights.get(light) else {
+            return Err("radius");
+        };
+        let Some(own) = self.spheres.get(i) else {
+            return Err("center");
+        };
+        let l = to_light.map(|c| c.to_bits());
+        let oc_l = dot_ii(own.eye_offset.map(|c| c.to_bits()), l);
+        let mut g = Quadric::default();
+        let ld = view.dirs().map(|d| dot_ii(l, d));
+        quadric((oc_l, gram, b), Form::G(&ld), g_den, &mut g).ok_or("radius")?;
+        let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
+        let shift = 15 + self.quick_shift;
+        let across = self.across.get(light).map_or([0; 2], |uv| {
+            // C·u in raw units times 2¹⁵ (|C| < 2³⁰ raw), to the quick test's units.
+            uv.map(|u| {
+                let c = own.center.map(|c| c.to_bits());
+                ((dot_ii(c, u.map(i32::from)) + (1 << (shift - 1))) >> shift) as i32
+            })
+        });
+        Ok(NarrowLight {
+            g,
+            arriving: arriving.map(|c| c.to_bits()),
+            casters,
+            ahead,
+            reach,
+            across,
+        })
+    }
+
+    /// The casters of sphere `i` for the distant light `to_light` and their filter, as
+    /// [`NarrowLight`] holds them: `(casters, ahead, reach)`. One pass over the other
+    /// spheres, on the frame's scaled integers.
+    ///
+    /// A shadow ray from the sphere's surface, lifted by `ε`, starts within `r + ε` of the
+    /// half-line from its centre toward the light, so only a sphere whose centre comes within
+    /// `r + r_k + ε` of that half-line can block it. The mask takes the spheres within
+    /// `r + r_k + 5ε` and `2⁻⁹` of the radii (looser than the rule of
+    /// [`Scene::shadow_casters`]), so it is never short of a caster. `ahead` and `reach` are
+    /// the loosest over the casters, each rounded toward passing more pixels, then widened by
+    /// the fast `N·L`'s error (`2⁻¹²`, and `2⁻¹¹` for its square); with no caster nothing
+    /// passes.
+    ///
+    /// Integers only, from exact 32×32→64 products: the scene lies within `2¹³` units, so
+    /// every centre and radius is below `2²⁹` raw and every difference below `2³⁰`. The
+    /// distance of a caster's centre from the half-line is `|Δ × L|` (no cancellation, unlike
+    /// `|Δ|² − (Δ·L)²`), each component taken to raw units (rounded down, within one unit)
+    /// and the root ([`sqrt`], within `2⁻²⁹`) lowered by four units and that relative error,
+    /// which also covers `|L|`'s distance from 1 (`2⁻²⁹`).
+    ///
+    /// A caster touching the sphere (a sphere resting on a floor sphere) is in the mask like
+    /// any other; where the lifted point lies within `ε` of it and ahead of its centre along
+    /// the light, the filter passes the pixel as unblocked, which the full-width kernel's
+    /// ray, starting inside the caster, may not: a sliver of width `ε` at the contact.
+    ///
+    /// `None` if the frame has spheres beyond the mask's 32 bits. Out of line: once per
+    /// sphere and light.
+    #[inline(never)]
+    fn narrow_casters(&self, i: usize, to_light: V3<Unit>) -> Option<(u32, i32, u32)> {
+        let own = self.spheres.get(i)?;
+        let eps = self.epsilon.to_bits() as i64;
+        let radius = |s: &FixedSphere| s.radius.to_bits() as i64;
+        let r = radius(own);
+        let l = to_light.map(|c| c.to_bits());
+        // r + ε is at least one unit (2¹⁶ raw) and below 2³¹: the `max`es only show the
+        // compiler that no divisor below is 0.
+        let lift = ((r + eps) as u64).max(1);
+        let (mut mask, mut ahead, mut reach) = (0u32, i64::MIN, i64::MIN);
+        for (k, c) in self.spheres.iter().enumerate() {
+            if k == i {
+                continue;
+            }
+            if k >= 32 {
+                return None;
+            }
+            let rk = radius(c);
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(c.center[j].to_bits()));
+            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
+            // Δ·L in raw units times 2³⁰, exact.
+            let along = mul_ii(d[0], l[0]) + mul_ii(d[1], l[1]) + mul_ii(d[2], l[2]);
+            // |Δ × L| in raw units, rounded down per component: below 2³¹ each.
+            let cross =
+                |a: usize, b: usize| ((mul_ii(d[a], l[b]) - mul_ii(d[b], l[a])) >> 30) as i32;
+            let cross = [cross(1, 2), cross(2, 0), cross(0, 1)];
+            let cross2 = cross.iter().map(|&v| mul_ii(v, v) as u64).sum::<u64>();
+            let root = sqrt(cross2);
+            let across = (root - (root >> 28)) as i64 - 4;
+            let radii = r + rk;
+            let near = radii + (radii >> 9) + 5 * eps;
+            // The half-line's closest point to the caster's centre: its start where the
+            // caster lies behind the sphere along the light (`Δ·L ≥ 0`).
+            let far = if along < 0 {
+                across >= near
+            } else {
+                len2 >= mul_ii(near as i32, near as i32)
+            };
+            if far {
+                continue;
+            }
+            mask |= 1 << k;
+            // −(Δ·L)/(r + ε) in Q15, rounded up (by a whole step where it is positive).
+            let q = (along.unsigned_abs() / (lift << 15).max(1)) as i64;
+            ahead = ahead.max(if along < 0 { q + 1 } else { -q });
+            // 1 − (gap/(r + ε))² in Q30, the ratio rounded down to 30 bits (gap < 2³¹).
+            let gap = across - rk;
+            let g30 = if gap <= 0 {
+                0
+            } else {
+                ((gap as u64) << 30) / lift
+            };
+            let g30 = g30.min(u32::MAX as u64) as u32;
+            reach = reach.max((1 << 30) - (mul_uu(g30, g30) >> 30) as i64);
+        }
+        if mask == 0 {
+            return Some((0, i32::MIN, 0));
+        }
+        let q15 = (ahead + 8).clamp(-2 << 15, 2 << 15);
+        let q30 = (reach + (1 << 19)).clamp(0, 2 << 30);
+        Some((mask, q15 as i32, q30 as u32))
+    }
+}
+
+/// Whether the narrow kernel takes the quick caster test (`narrow_blocked`): on ARMv6-M,
+/// where each 32×32→64-bit product of the exact test is a call, it saves most of a floor's
+/// caster tests, and on RV32, whose 64-bit product is two instructions, some; with the
+/// Cortex-M4's one-instruction product the exact test is about as cheap, and the quick one
+/// costs the loop more than it saves (`docs/performance.md`, "Choices measured"). The
+/// crate's own tests turn it on everywhere, to hold it to changing no pixel.
+pub(crate) const QUICK_CASTER_TEST: bool =
+    cfg!(any(shadeline_short_mul, target_arch = "riscv32", test));
+
+/// Two unit vectors across the unit vector `l` (Q30), in Q15: `u = (l × e)/|l × e|` for the
+/// axis `e` least along `l` (so `|l × e|² ≥ 2/3`), and `v = l × u`. Each is within `2⁻¹⁵`
+/// of the exact basis across `l/|l|` in length (rounding down to Q15, `inv_sqrt`'s error,
+/// and `|l|` within `2⁻²⁹` of 1).
+fn across_light(l: [i32; 3]) -> [[i16; 3]; 2] {
+    let [x, y, z] = l;
+    let m = l.map(|c| c.unsigned_abs());
+    // Components of a unit vector in Q30: negating one cannot overflow.
+    let w = if m[0] <= m[1] && m[0] <= m[2] {
+        [0, z, -y]
+    } else if m[1] <= m[2] {
+        [-z, 0, x]
+    } else {
+        [y, -x, 0]
+    };
+    let len2 = w.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>();
+    let unit = |c: i64| c.clamp(-(1 << 15) + 1, (1 << 15) - 1) as i32;
+    // w·(1/|w|) in Q15: `inv_sqrt`'s `v·y >> (shift − 15)`, `shift` at least 31.
+    let (inv, shift) = inv_sqrt(len2).unwrap_or((0, 31));
+    let [u0, u1, u2] = w.map(|c| unit(mul_iu(c, inv) >> (shift - 15)));
+    let cross = |a: i32, b: i32, c: i32, d: i32| unit((mul_ii(a, b) - mul_ii(c, d)) >> 30);
+    let v = [
+        cross(y, u2, z, u1),
+        cross(z, u0, x, u2),
+        cross(x, u1, y, u0),
+    ];
+    [[u0, u1, u2].map(|c| c as i16), v.map(|c| c as i16)]
+}
+
+#[cfg(test)]
+mod tests {
+    extern crate std;
+    use super::*;
+    use crate::vec3::Vec3;
+
+    /// Values at and around every power of two of both signs, and a xorshift stream.
+    fn values() -> impl Iterator<Item = i128> {
+        let edges = (0..127).flat_map(|k| {
+            let p = 1i128 << k;
+            [p - 1, p, p.wrapping_add(1), -p - 1, -p, -p + 1]
+        });
+        let mut x = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = move || {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            x
+        };
+        let random = (0..2000).map(move |_| {
+            let (h, l) = (next(), next());
+            (((h as u128) << 64 | l as u128) as i128) >> (h % 120)
+        });
+        edges.chain([0, i128::MAX, i128::MIN]).chain(random)
+    }
+
+    /// The division is exact: the quotient rounded toward zero, `None` exactly where it
+    /// does not fit `i64`, for divisors at the prepare's extremes (`r` from one unit, `2¹⁶`
+    /// raw, to `2³¹`; `z` up to 63) and dividends at every power of two.
+    #[test]
+    fn divisor_is_exact() {
+        for (d, passes, z) in [
+            (1u32 << 16, 2u32, 0u32),
+            (1 << 16, 1, 63),
+            (65_537, 2, 29),
+            (0x1234_5679, 1, 31),
+            (0x7fff_ffff, 2, 0),
+            (u32::MAX, 1, 59),
+            (3 << 20, 2, 13),
+        ] {
+            let den = Divisor { d, passes, z };
+            for c in values() {
+                let mut m = c.unsigned_abs();
+                for _ in 0..passes {
+                    m /= d as u128;
+                }
+                let want = i64::try_from(m >> z)
+                    .ok()
+                    .map(|q| if c < 0 { -q } else { q });
+                assert_eq!(den.divide(c), want, "{c}/({d}^{passes}·2^{z})");
+            }
+        }
+    }
+
+    /// `quadric` against the quadrics' definitions in `i128`, from cross products: `E′`'s
+    /// raw coefficients `r²·(Dₐ·D_b) − (oc × Dₐ)·(oc × D_b)`, `G`'s `(oc × Dₐ)·(L × D_b)`,
+    /// symmetrized and doubled off the diagonal, each through the same divisor. Random
+    /// offsets, radii, lights and directions at the bounds the prepare holds them to
+    /// (components below `2³⁰`, `|oc|² < 3·2⁶⁰`), and their extremes.
+    #[test]
+    fn quadrics_are_their_cross_product_definitions() {
+        let mut x = 0x2545_f491_4f6c_dd1du64;
+        let mut next = move |bits: u32| {
+            x ^= x << 13;
+            x ^= x >> 7;
+            x ^= x << 17;
+            // Signed, below 2^bits in magnitude, often at the extremes.
+            let v = (x >> (64 - bits)) as i64;
+            let v = match x % 8 {
+                0 => (1 << (bits - 1)) - 1,
+                1 => 1 - (1 << (bits - 1)),
+                _ => v - (1 << (bits - 1)),
+            };
+            v as i32
+        };
+        let cross = |a: [i32; 3], b: [i32; 3]| {
+            let m = |i: usize, j: usize| a[i] as i128 * b[j] as i128;
+            [m(1, 2) - m(2, 1), m(2, 0) - m(0, 2), m(0, 1) - m(1, 0)]
+        };
+        let dot = |a: [i128; 3], b: [i128; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let wide = |a: [i32; 3]| a.map(|c| c as i128);
+        let mut checked = 0;
+        for _ in 0..3000 {
+            let oc = [next(31), next(31), next(31)];
+            let r = (next(31) as i64).unsigned_abs().max(1 << 16) as i64;
+            let dirs = [
+                [next(31), next(31), next(31)],
+                [next(29), next(29), next(29)],
+                [next(29), next(29), next(29)],
+            ];
+            let l = [next(31), next(31), next(31)];
+            let oc_len2 = dot(wide(oc), wide(oc));
+            if oc_len2 >= 3 << 60 {
+                continue;
+            }
+            let r2 = r * r;
+            let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a], dirs[b]));
+            let b = dirs.map(|d| dot_ii(oc, d));
+            let ld = dirs.map(|d| dot_ii(l, d));
+            let oc_l = dot_ii(oc, l);
+            let w = dirs.map(|d| cross(oc, d));
+            let v = dirs.map(|d| cross(l, d));
+            // A divisor that keeps the quotients within `i64`: r²·2³⁴ is at least 2⁶⁶, and
+            // 2¹²⁷ over it below 2⁶².
+            let den = Divisor {
+                d: r as u32,
+                passes: 2,
+                z: 34,
+            };
+            let mut e = Quadric::default();
+            let mut g = Quadric::default();
+            let e_ok = quadric((r2 - oc_len2 as i64, &gram, &b), Form::E, &den, &mut e);
+            let g_ok = quadric((oc_l, &gram, &b), Form::G(&ld), &den, &mut g);
+            assert!(
+                e_ok.is_some() && g_ok.is_some(),
+                "{oc:?} {r} {dirs:?} {l:?}"
+            );
+            for (k, &(a, c)) in PAIRS.iter().enumerate() {
+                let twice = if a == c { 1 } else { 2 };
+                let gram = dot(wide(dirs[a]), wide(dirs[c]));
+                let e_raw = twice * (r2 as i128 * gram - dot(w[a], w[c]));
+                let g_raw = if a == c {
+                    dot(w[a], v[a])
+                } else {
+                    dot(w[a], v[c]) + dot(w[c], v[a])
+                };
+                assert_eq!(
+                    Some(e.c[k]),
+                    den.divide(e_raw),
+                    "E′ c{k} of {oc:?} {r} {dirs:?}"
+                );
+                assert_eq!(
+                    Some(g.c[k]),
+                    den.divide(g_raw),
+                    "G c{k} of {oc:?} {l:?} {dirs:?}"
+                );
+            }
+            checked += 1;
+        }
+        assert!(checked > 1000, "{checked} cases");
+    }
+
+    /// `narrow_casters` against the same geometry in `f64`, from the prepared integers, over
+    /// random pairs of spheres under a random distant light: the mask never leaves out a
+    /// sphere within the rule of `Scene::shadow_casters` (nor takes one well outside its own),
+    /// and `ahead` and `reach` are never tighter than the exact values widened by the fast
+    /// `N·L`'s error, nor looser than that by more than their rounding.
+    #[test]
+    fn caster_filter_is_the_exact_filter_rounded_outward() {
+        use crate::scene::{Camera, Light, Material, Sphere};
+        use crate::LinearRgb;
+        let mut state = 0x853c_49e6_748f_ea9bu64;
+        let mut next = |lo: f64, hi: f64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)) as f32
+        };
+        let (mut masked, mut left_out) = (0, 0);
+        for round in 0..4000 {
+            let camera = Camera {
+                position: Vec3::new(0.0, 0.0, 40.0),
+                look_at: Vec3::new(0.0, 0.0, 0.0),
+                up: Vec3::new(0.0, 1.0, 0.0),
+                vfov_degrees: 30.0,
+            };
+            let mut scene: Scene<2, 1> = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+            let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0));
+            let mut spheres = [0; 2].map(|_| Sphere {
+                center: Vec3::new(next(-3.0, 3.0), next(-3.0, 3.0), next(-3.0, 3.0)),
+                radius: next(0.2, 1.5),
+                material: Material::default(),
+            });
+            if round % 2 == 1 {
+                // The second sphere ahead of the first along the light, its centre about the
+                // radii from the half-line: where the mask's margins decide (ε is 0.004 here).
+                let Some(u) = (-direction).normalized() else {
+                    continue;
+                };
+                let Some(p) = u.cross(Vec3::new(next(-1.0, 1.0), 1.0, 0.5)).normalized() else {
+                    continue;
+                };
+                let radii = spheres[0].radius + spheres[1].radius;
+                let offset = u.scale(next(1.0, 3.0)) + p.scale(radii + next(0.0, 0.04));
+                spheres[1].center = spheres[0].center + offset;
+            }
+            if spheres.iter().any(|s| scene.add_sphere(*s).is_err()) {
+                continue;
+            }
+            let light = Light::Distant {
+                direction,
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: 1.0,
+            };
+            if scene.add_light(light).is_err() {
+                continue;
+            }
+            let Ok(frame) = PreparedFixed::new(&scene, 64, 48) else {
+                continue;
+            };
+            if frame.narrow.is_none() {
+                continue;
+            }
+            let Some(FixedLight::Distant { to_light, .. }) = frame.lights.first() else {
+                panic!("a distant light");
+            };
+            let l = to_light.map(|c| c.to_bits() as f64);
+            let norm = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
+            let l = l.map(|c| c / norm);
+            let eps = frame.epsilon.to_bits() as f64;
+            for (i, k) in [(0, 1), (1, 0)] {
+                let (own, other) = (&frame.spheres[i], &frame.spheres[k]);
+                let d = each3(|j| (own.center[j].to_bits() - other.center[j].to_bits()) as f64);
+                let (r, rk) = (own.radius.to_bits() as f64, other.radius.to_bits() as f64);
+                let along = d[0] * l[0] + d[1] * l[1] + d[2] * l[2];
+                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
+                let across = (len * len - along * along).max(0.0).sqrt();
+                let dist = if along < 0.0 { across } else { len };
+                let filter = frame.narrow_lights[i][0];
+                let bit = filter.casters & (1 << k) != 0;
+                let radii = r + rk;
+                if dist < radii + 5.0 * eps + 1.0e-3 * radii {
+                    assert!(bit, "sphere {k} left out of {i}'s casters at {dist} raw");
+                }
+                if dist > radii * (1.0 + 1.0 / 512.0) + 5.0 * eps + 16.0 {
+                    assert!(!bit, "sphere {k} among {i}'s casters at {dist} raw");
+                    left_out += 1;
+                }
+                if !bit {
+                    continue;
+                }
+                masked += 1;
+                let lift = r + eps;
+                let ahead = ((-along / lift + 1.0 / 4096.0) * 32768.0).clamp(-65536.0, 65536.0);
+                let got = filter.ahead as f64;
+                assert!(
+                    got >= ahead - 1e-3 && got <= ahead + 2.01,
+                    "ahead {got} for {ahead}"
+                );
+                let gap = across - rk;
+                let reach = if gap <= 0.0 {
+                    1.0
+                } else {
+                    1.0 - (gap / lift).powi(2)
+                };
+                let reach = ((reach + 1.0 / 2048.0) * (1u64 << 30) as f64)
+                    .clamp(0.0, 2.0 * (1u64 << 30) as f64);
+                let got = filter.reach as f64;
+                assert!(
+                    got >= reach - 1.0 && got <= reach + (1 << 18) as f64,
+                    "reach {got} for {reach}"
+                );
+            }
+        }
+        assert!(
+            masked > 1000 && left_out > 3000,
+            "{masked} masked, {left_out} left out"
+        );
+    }
+}
