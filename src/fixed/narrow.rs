@@ -1754,6 +1754,25 @@ mod tests {
         }
     }
 
+    /// The hit records of frame `a` at `w × h` if `b` renders the same colours (8-bit) and
+    /// hit records, `None` otherwise.
+    fn same_frames<const S: usize, const L: usize>(
+        a: &PreparedFixed<S, L>,
+        b: &PreparedFixed<S, L>,
+        (w, h): (u32, u32),
+    ) -> Option<Vec<crate::HitRecord>> {
+        use crate::{HitRecord, Render, Rgb888};
+        let mut ca = std::vec![Rgb888::default(); (w * h) as usize];
+        let mut cb = ca.clone();
+        a.render_frame(&mut ca).unwrap();
+        b.render_frame(&mut cb).unwrap();
+        let mut ha = std::vec![HitRecord::default(); (w * h) as usize];
+        let mut hb = ha.clone();
+        a.render_frame(&mut ha).unwrap();
+        b.render_frame(&mut hb).unwrap();
+        (ca == cb && ha == hb).then_some(ha)
+    }
+
     /// The quick caster test only clears casters the exact test finds clear: on random
     /// frames of spheres resting on floor spheres of radius 20 to 150 (whose shadows fall
     /// across the floor, and whose floor is a caster of each) and of spheres close enough
@@ -1763,7 +1782,6 @@ mod tests {
     fn the_quick_caster_test_changes_no_pixel() {
         use crate::test_scenes::{random_classic_scene, random_floor_scene, Draw};
         use crate::vec3::Vec3;
-        use crate::{HitRecord, Render, Rgb888};
         let mut next = uniform(0x1f83_d9ab_fb41_bd6b);
         let draw = Draw {
             half_extent: Vec3::new(1.5, 1.0, 1.5),
@@ -1796,19 +1814,9 @@ mod tests {
                     n.quick_margin = -1;
                 }
             }
-            let mut a = std::vec![Rgb888::default(); (w * h) as usize];
-            let mut b = a.clone();
-            with.render_frame(&mut a).unwrap();
-            without.render_frame(&mut b).unwrap();
-            let mut ha = std::vec![HitRecord::default(); (w * h) as usize];
-            let mut hb = ha.clone();
-            with.render_frame(&mut ha).unwrap();
-            without.render_frame(&mut hb).unwrap();
-            assert!(
-                a == b && ha == hb,
-                "the quick caster test changed a pixel (scene {n})"
-            );
-            shadowed_pixels += hb.iter().filter(|h| h.shadowed != 0).count();
+            let hits = same_frames(&with, &without, (w, h))
+                .unwrap_or_else(|| panic!("the quick caster test changed a pixel (scene {n})"));
+            shadowed_pixels += hits.iter().filter(|h| h.shadowed != 0).count();
         }
         std::println!("{frames} frames with the quick test, {shadowed_pixels} shadowed pixels");
         assert!(frames >= 60 && shadowed_pixels > 10_000);
@@ -1821,7 +1829,7 @@ mod tests {
     fn the_caster_filter_changes_no_pixel() {
         use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
         use crate::vec3::Vec3;
-        use crate::{HitRecord, LinearRgb, Render, Rgb888};
+        use crate::LinearRgb;
         let mut next = uniform(0x9e37_79b9_7f4a_7c15u64);
         let (w, h) = (96u32, 72u32);
         let (mut filtered, mut shadowed_pixels) = (0, 0usize);
@@ -1871,16 +1879,9 @@ mod tests {
                 l.ahead = i32::MAX;
                 l.reach = u32::MAX;
             }
-            let mut a = std::vec![Rgb888::default(); (w * h) as usize];
-            let mut b = a.clone();
-            with.render_frame(&mut a).unwrap();
-            without.render_frame(&mut b).unwrap();
-            let mut ha = std::vec![HitRecord::default(); (w * h) as usize];
-            let mut hb = ha.clone();
-            with.render_frame(&mut ha).unwrap();
-            without.render_frame(&mut hb).unwrap();
-            assert!(a == b && ha == hb, "the caster filter changed a pixel");
-            shadowed_pixels += hb.iter().filter(|h| h.shadowed != 0).count();
+            let hits =
+                same_frames(&with, &without, (w, h)).expect("the caster filter changed a pixel");
+            shadowed_pixels += hits.iter().filter(|h| h.shadowed != 0).count();
         }
         std::println!(
             "{filtered} frames with a filtered caster, {shadowed_pixels} shadowed pixels"
