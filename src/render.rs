@@ -178,7 +178,7 @@ impl core::error::Error for RenderError {}
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Kernel {
-    /// The narrow kernel: classic Phong and Blinn-Phong under distant lights, shaded from
+    /// The narrow kernel: classic Phong, Blinn-Phong and Lambert under distant lights (and, on the fixed path, point lights of radius 0), shaded from
     /// per-row quadrics of the column, on every sphere the camera is clearly outside of.
     Narrow,
     /// The path's general kernel (on the fixed path, the full-width one), because the
@@ -186,9 +186,10 @@ pub enum Kernel {
     General {
         /// The first item the narrow kernel does not take.
         item: Item,
-        /// Its field, as spelled in the scene file: `type` (a point light), `model`,
+        /// Its field, as spelled in the scene file: `type` (a point light, on the float
+        /// paths), `radius` (a sphere light, or a number out of the narrow kernel's formats), `model`,
         /// `shininess`, `vfov`, `center` (the camera close to the sphere, or a sphere close
-        /// to its casters), `radius` (a number out of the narrow kernel's formats).
+        /// to its casters).
         field: &'static str,
     },
 }

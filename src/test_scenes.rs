@@ -107,6 +107,55 @@ pub(crate) fn random_classic_scene<const S: usize, const L: usize>(
 pub(crate) fn random_floor_scene<const S: usize, const L: usize>(
     next: &mut impl FnMut(f32, f32) -> f32,
 ) -> Scene<S, L> {
+    let mut scene = random_floor(next);
+    for _ in 0..(next(1.0, 3.99) as usize) {
+        let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, -0.2), next(-1.0, 1.0));
+        scene
+            .add_light(Light::Distant {
+                direction,
+                color: LinearRgb::new(1.0, 1.0, 1.0),
+                intensity: next(0.5, 1.5),
+            })
+            .unwrap();
+    }
+    scene
+}
+
+/// The spheres and camera of [`random_floor_scene`] under one or two point lights (radius 0)
+/// 0.3 to 3 units above the floor, within 4 units of its top, and half the time a distant
+/// fill light: a floor under lamps. A lamp drawn inside a sphere is drawn again.
+pub(crate) fn random_lamp_scene<const S: usize, const L: usize>(
+    next: &mut impl FnMut(f32, f32) -> f32,
+) -> Scene<S, L> {
+    let mut scene = random_floor(next);
+    let lamps = next(1.0, 2.99) as usize;
+    let mut added = 0;
+    while added < lamps {
+        let position = Vec3::new(next(-4.0, 4.0), next(0.3, 3.0), next(-4.0, 4.0));
+        let lamp = Light::Point {
+            position,
+            color: LinearRgb::new(1.0, next(0.7, 1.0), next(0.6, 1.0)),
+            intensity: next(5.0, 40.0),
+            radius: 0.0,
+        };
+        added += usize::from(scene.add_light(lamp).is_ok());
+    }
+    if next(0.0, 1.0) < 0.5 {
+        let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, -0.2), next(-1.0, 1.0));
+        let fill = Light::Distant {
+            direction,
+            color: LinearRgb::new(0.6, 0.7, 1.0),
+            intensity: next(0.2, 0.6),
+        };
+        scene.add_light(fill).unwrap();
+    }
+    scene
+}
+
+/// The floor, spheres and camera of [`random_floor_scene`], with no light.
+fn random_floor<const S: usize, const L: usize>(
+    next: &mut impl FnMut(f32, f32) -> f32,
+) -> Scene<S, L> {
     let angle = next(-3.1, 3.1);
     let distance = next(5.0, 9.0);
     let camera = Camera {
@@ -165,16 +214,6 @@ pub(crate) fn random_floor_scene<const S: usize, const L: usize>(
                 center: Vec3::new(x, y, z),
                 radius,
                 material,
-            })
-            .unwrap();
-    }
-    for _ in 0..(next(1.0, 3.99) as usize) {
-        let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, -0.2), next(-1.0, 1.0));
-        scene
-            .add_light(Light::Distant {
-                direction,
-                color: LinearRgb::new(1.0, 1.0, 1.0),
-                intensity: next(0.5, 1.5),
             })
             .unwrap();
     }

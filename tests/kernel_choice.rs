@@ -64,13 +64,23 @@ fn the_exponent_series_takes_the_narrow_kernel_on_every_path() {
 
 #[test]
 fn the_first_point_light_or_normalized_sphere_is_named() {
-    // One point light: every path names it, whichever the materials.
+    // One point light: every float path names it, whichever the materials; the fixed path's
+    // narrow kernel takes point lights, and names the first normalized sphere instead.
     let point = Kernel::General {
         item: Item::Light(0),
         field: "type",
     };
     for scene in [lamp().unwrap(), three_lights().unwrap()] {
-        assert_eq!(kernels(&scene, 320, 240), [point; 4]);
+        let first = scene
+            .spheres()
+            .iter()
+            .position(|s| !s.material.model.is_classic() && s.material.model != Model::Lambert)
+            .expect("the scene has normalized spheres");
+        let model = Kernel::General {
+            item: Item::Sphere(first),
+            field: "model",
+        };
+        assert_eq!(kernels(&scene, 320, 240), [point, point, point, model]);
     }
     // Distant lights only: the first sphere that is not classic.
     let scene = materials().unwrap();
@@ -92,6 +102,33 @@ fn spheres_resting_on_a_floor_take_the_narrow_kernel_on_every_path() {
     // general kernel for that (a build without `full-width` renders the frame too,
     // `checks/no-models/tests/narrow_only.rs`).
     assert_eq!(kernels(&floor().unwrap(), 320, 240), [Kernel::Narrow; 4]);
+}
+
+#[test]
+fn classic_spheres_under_a_point_light_take_the_fixed_narrow_kernel() {
+    // The floor scene with its key light a lamp: the float paths name the lamp, the fixed
+    // path takes its narrow kernel.
+    let distant = floor().unwrap();
+    let mut scene = Scene::<6, 3>::new(*distant.camera(), distant.background()).unwrap();
+    for s in distant.spheres() {
+        scene.add_sphere(*s).unwrap();
+    }
+    scene
+        .add_light(Light::Point {
+            position: Vec3::new(1.5, 3.0, 2.0),
+            color: LinearRgb::new(1.0, 0.95, 0.9),
+            intensity: 60.0,
+            radius: 0.0,
+        })
+        .unwrap();
+    let point = Kernel::General {
+        item: Item::Light(0),
+        field: "type",
+    };
+    assert_eq!(
+        kernels(&scene, 320, 240),
+        [point, point, point, Kernel::Narrow]
+    );
 }
 
 /// A Lambert floor under distant lights takes the narrow kernel on every path (a classic

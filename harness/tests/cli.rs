@@ -456,7 +456,7 @@ fn render_names_the_kernel_and_why() {
     assert!(out.status.success(), "{}", stderr(&out));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
-        stdout.contains("fixed    kernel: full-width, because of light 0: `type`"),
+        stdout.contains("fixed    kernel: full-width, because of sphere 1: `model`"),
         "{stdout}"
     );
 }

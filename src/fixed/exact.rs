@@ -58,6 +58,16 @@ pub(crate) fn shift_saturating(p: u64, e: i32) -> u32 {
     u32::try_from(v).unwrap_or(u32::MAX)
 }
 
+/// `power/d²` per channel in U16F16, saturating, from `1/d = y·2^-shift` (raw I16F16 `d`) as
+/// [`inv_sqrt`](super::roots::inv_sqrt) gives it: `1/d²` in units is `y²·2^(63 − 2·shift)`
+/// with `y²` in U1F31. A point light's arriving colour, in both kernels.
+#[inline(always)]
+pub(crate) fn arriving(power: [Exact; 3], (y, shift): (u32, u32)) -> [u32; 3] {
+    let y2 = (super::mul::mul_uu(y, y) >> 31) as u32;
+    let e = 79 - 2 * shift as i32;
+    power.map(|pw| shift_saturating(super::mul::mul_uu(pw.mantissa, y2), pw.exponent + e))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

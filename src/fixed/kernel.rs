@@ -29,10 +29,10 @@
 //! [`super::roots`], which return `None` or 0 for zero and take unsigned input. Nothing here
 //! can panic, in release or debug.
 
-#[cfg(feature = "full-width")]
-use super::exact::shift_saturating;
-#[cfg(feature = "full-width")]
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
 use super::exact::Exact;
+#[cfg(feature = "full-width")]
+use super::exact::{arriving, shift_saturating};
 #[cfg(all(feature = "models", feature = "full-width"))]
 use super::mul::leading_zeros;
 use super::mul::{mul_ii, mul_iu, mul_uu};
@@ -605,16 +605,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 fn unit_component(v: i64, (y, shift): (u32, u32)) -> Unit {
     let u = mul_iu(to_len(v).to_bits(), y) >> (shift - 30).min(63);
     Unit::from_bits(u.clamp(-(1 << 30), 1 << 30) as i32)
-}
-
-/// `power/d²` per channel in U16F16, saturating, from `1/d = y·2^-shift` (raw I16F16 `d`):
-/// `1/d²` in units is `y²·2^(63 − 2·shift)` with `y²` in U1F31.
-#[cfg(feature = "full-width")]
-#[inline(always)]
-fn arriving(power: V3<Exact>, (y, shift): (u32, u32)) -> [u32; 3] {
-    let y2 = (mul_uu(y, y) >> 31) as u32;
-    let e = 79 - 2 * shift as i32;
-    power.map(|pw| shift_saturating(mul_uu(pw.mantissa, y2), pw.exponent + e))
 }
 
 /// The half vector `H = normalize(L + V)`, `V = −d`; `None` where `L = −V`.

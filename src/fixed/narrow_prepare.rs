@@ -6,16 +6,17 @@
 //! its scaled integers.
 
 use super::convert::to_f32;
+use super::exact::arriving;
 use super::mul::{dot_ii, mul_128, mul_ii, mul_iu, mul_uu};
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::prepare::{
-    FixedLight, FixedSphere, NarrowLight, NarrowSphere, NarrowView, PreparedFixed,
+    FixedLight, FixedSphere, NarrowLight, NarrowPoint, NarrowSphere, NarrowView, PreparedFixed,
 };
 use super::quadric::Quadric;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{each3, Unit, V3};
-use crate::scene::{Item, Model, Scene};
+use crate::scene::{Item, Light, Model, Scene};
 use fixed::types::I16F48;
 
 /// The largest error of the narrow kernel's fast `h = 1 − cos` (Phong's `1 − R·V`,
@@ -182,14 +183,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         scene: &Scene<S, L>,
         corners: bool,
     ) -> Result<(), (Item, &'static str)> {
-        // Without the full-width kernel `prepare_fields` has refused these already.
-        #[cfg(feature = "full-width")]
+        // Sphere lights (a point light of radius above 0) need the full-width kernel.
         if let Some(light) = self
             .lights
             .iter()
-            .position(|l| !matches!(l, FixedLight::Distant { .. }))
+            .position(|l| !matches!(l, FixedLight::Distant { .. } | FixedLight::Point { .. }))
         {
-            return Err((Item::Light(light), "type"));
+            return Err((Item::Light(light), "radius"));
         }
         // Lambert shades as a classic sphere with no lobe (`Params::lambert`, and no cutoff
         // below); the other normalized models need the full-width kernel.
@@ -216,8 +216,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             step_x: to_q29(self.step_x),
             step_y: to_q29(self.step_y),
         };
-        // Each light's brightest channel, the largest level converted (the conversion is
-        // monotonic, so it is the largest of the converted levels).
+        // Each distant light's brightest channel, the largest level converted (the
+        // conversion is monotonic, so it is the largest of the converted levels).
         let intensity: f32 = self
             .lights
             .iter()
@@ -226,10 +226,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     let brightest = arriving.iter().map(|c| c.to_bits()).max().unwrap_or(0);
                     to_f32(brightest as i64, 16)
                 }
-                // Never reached: the narrow kernel takes distant lights only (checked above).
                 _ => 0.0,
             })
             .sum();
+        self.prepare_points();
         // The Gram matrix of the quadrics' three directions, in the order of `PAIRS`: the
         // same for every sphere.
         let dirs = view.dirs();
@@ -249,9 +249,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             // A Lambert sphere has no lobe: no light's `h` is below a cutoff of 0.
             let intensity = match m {
                 Some(m) if matches!(m.model, Model::Lambert) => 0.0,
-                _ => intensity,
+                _ => intensity + self.point_intensity(i),
             };
-            self.prepare_narrow_sphere(i, (&view, &gram), (n, intensity))
+            self.prepare_narrow_sphere(scene, i, (&view, &gram), (n, intensity))
                 .map_err(|field| (Item::Sphere(i), field))?;
         }
         self.narrow = Some(view);
@@ -265,6 +265,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(never)]
     fn prepare_narrow_sphere(
         &mut self,
+        scene: &Scene<S, L>,
         i: usize,
         (view, gram): (&NarrowView, &[i64; 6]),
         (n, intensity): (f32, f32),
@@ -317,7 +318,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return Err("radius");
         }
         for light_index in 0..self.lights.len().min(L) {
-            let light = self.narrow_light(i, light_index, (view, gram, &b), &g_den)?;
+            let light = self.narrow_light(scene, i, light_index, (view, gram, &b), &g_den)?;
             match self
                 .narrow_lights
                 .get_mut(i)
@@ -439,23 +440,38 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(always)]
     fn narrow_light(
         &self,
+        scene: &Scene<S, L>,
         i: usize,
         light: usize,
         (view, gram, b): (&NarrowView, &[i64; 6], &[i64; 3]),
         g_den: &Divisor,
     ) -> Result<NarrowLight, &'static str> {
-        let Some(FixedLight::Distant { to_light, arriving }) = self.lights.get(light) else {
-            return Err("radius");
-        };
         let Some(own) = self.spheres.get(i) else {
             return Err("center");
         };
-        let l = to_light.map(|c| c.to_bits());
+        let (l, arriving) = match self.lights.get(light) {
+            Some(FixedLight::Distant { to_light, arriving }) => {
+                (to_light.map(|c| c.to_bits()), arriving.map(|c| c.to_bits()))
+            }
+            Some(FixedLight::Point { .. }) => {
+                (self.points.get(light).map_or([0; 3], |p| p.dir), [0; 3])
+            }
+            _ => return Err("radius"),
+        };
+        let scene_light = match self.lights.get(light) {
+            Some(FixedLight::Point { .. }) => scene.lights().get(light),
+            _ => None,
+        };
         let oc_l = dot_ii(own.eye_offset.map(|c| c.to_bits()), l);
         let mut g = Quadric::default();
         let ld = view.dirs().map(|d| dot_ii(l, d));
         quadric((oc_l, gram, b), Form::G(&ld), g_den, &mut g).ok_or("radius")?;
-        let (casters, ahead, reach) = self.narrow_casters(i, *to_light).ok_or("center")?;
+        let (casters, ahead, reach) = match scene_light {
+            Some(point) => point_casters(scene, i, point).ok_or("center")?,
+            None => self
+                .narrow_casters(i, l.map(Unit::from_bits))
+                .ok_or("center")?,
+        };
         let shift = 15 + self.quick_shift;
         let across = self.across.get(light).map_or([0; 2], |uv| {
             // C·u in raw units times 2¹⁵ (|C| < 2³⁰ raw), to the quick test's units.
@@ -466,12 +482,59 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         });
         Ok(NarrowLight {
             g,
-            arriving: arriving.map(|c| c.to_bits()),
+            arriving,
             casters,
             ahead,
             reach,
             across,
         })
+    }
+
+    /// [`Self::points`]: each point light's direction (I2F30) and distance (raw) from the
+    /// eye, from the exact integer offset `P − eye` (`inv_sqrt` and `sqrt`, within `2⁻³⁰`
+    /// relative). A light at the eye has direction 0 and distance 0, which the kernel's
+    /// formulas take as they are.
+    fn prepare_points(&mut self) {
+        for (point, light) in self.points.iter_mut().zip(&self.lights) {
+            let FixedLight::Point { position, .. } = light else {
+                continue;
+            };
+            let q = each3(|c| position[c].to_bits() as i64 - self.eye[c].to_bits() as i64);
+            // Both points lie within 2³⁰ raw of the origin: each square below 2⁶², the sum
+            // below 2⁶⁴.
+            let len2 = q.iter().map(|&c| (c * c) as u64).sum::<u64>();
+            let dir = inv_sqrt(len2).map_or([0; 3], |(y, shift)| {
+                q.map(|c| ((c * y as i64) >> (shift - 30).min(63)) as i32)
+            });
+            *point = NarrowPoint {
+                dir,
+                distance: sqrt(len2) as i64,
+            };
+        }
+    }
+
+    /// The sum over the point lights of the brightest channel arriving anywhere on sphere
+    /// `i` (levels): each light's power over the square of its distance from the sphere,
+    /// `|P − C| − r`, rounded down, so the sum is never short. It bounds the lobe with the
+    /// distant lights' intensities (`lobe_cutoff`).
+    fn point_intensity(&self, i: usize) -> f32 {
+        let Some(own) = self.spheres.get(i) else {
+            return 0.0;
+        };
+        let mut sum = 0.0;
+        for light in &self.lights {
+            let FixedLight::Point { position, power } = light else {
+                continue;
+            };
+            let w = each3(|c| position[c].to_bits() as i64 - own.center[c].to_bits() as i64);
+            let len2 = w.iter().map(|&c| (c * c) as u64).sum::<u64>();
+            let gap = (sqrt(len2) as i64 - own.radius.to_bits() as i64 - 2).max(1) as u64;
+            let brightest = inv_sqrt(gap * gap).map_or(u32::MAX, |inv| {
+                arriving(*power, inv).into_iter().max().unwrap_or(0)
+            });
+            sum += to_f32(brightest as i64, 16);
+        }
+        sum
     }
 
     /// The casters of sphere `i` for the distant light `to_light` and their filter, as
@@ -564,6 +627,24 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let q30 = (reach + (1 << 19)).clamp(0, 2 << 30);
         Some((mask, q15 as i32, q30 as u32))
     }
+}
+
+/// The casters of sphere `i` for the point light `light` (as [`NarrowLight`] holds them):
+/// [`Scene::shadow_casters`]' mask, the same spheres the full-width kernel tests, and a
+/// filter that passes every pixel (`N·L` alone does not bound a ray toward a point). `None`
+/// if the frame has spheres beyond the mask's 32 bits.
+fn point_casters<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    i: usize,
+    light: &Light,
+) -> Option<(u32, i32, u32)> {
+    if scene.spheres().len() > 32 {
+        return None;
+    }
+    Some(match scene.shadow_casters(i, light) {
+        0 => (0, i32::MIN, 0),
+        mask => (mask, i32::MAX, u32::MAX),
+    })
 }
 
 /// Whether the narrow kernel takes the quick caster test (`narrow_blocked`): on ARMv6-M,

@@ -118,8 +118,20 @@ pub(crate) struct NarrowSphere {
     pub quick_margin: i32,
 }
 
+/// A point light as the narrow kernel sees it from the eye: `Q = P − eye` as a unit vector
+/// (I2F30 bits) and its length (raw). The kernel's quadrics for a point light are those of a
+/// distant light along `Q/|Q|` (see module `narrow`), and the distance and direction to the
+/// light at a hit `X = eye + t·D̂` follow from `Q − t·D̂`.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct NarrowPoint {
+    pub dir: [i32; 3],
+    pub distance: i64,
+}
+
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
-/// front of the caster tests.
+/// front of the caster tests. For a point light, `G` is that of the direction from the eye
+/// toward it ([`NarrowPoint`]), `arriving` is unused (it falls with distance), and the
+/// filter passes every pixel to the caster tests.
 ///
 /// The filter holds for the lifted origin `O = C + (r + ε)·N` of any caster `k` of the
 /// sphere: the shadow ray can meet the caster only if `O` is behind it along `L`
@@ -241,8 +253,7 @@ pub(crate) enum FixedLight {
         arriving: V3<U16F16>,
     },
     /// `power`: `colour·intensity/4π` times the scale squared, per channel, exact; arriving
-    /// is `power/d²` in scaled units. Only the full-width kernel reads them.
-    #[cfg_attr(not(feature = "full-width"), allow(dead_code))]
+    /// is `power/d²` in scaled units ([`super::exact::arriving`]).
     Point { position: V3<Len>, power: V3<Exact> },
     /// A sphere light (a point light with a radius, see `area`): `position` and `power` as
     /// for `Point`, and its scaled radius.
@@ -297,6 +308,8 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     /// orthonormal basis up to rounding: the quick caster test measures a lifted point's
     /// distance from a caster's axis along the light in them (set with `narrow`).
     pub(crate) across: [[[i16; 3]; 2]; L],
+    /// Per point light, its direction and distance from the eye (set with `narrow`).
+    pub(crate) points: [NarrowPoint; L],
     /// The quick caster test's unit of length, `2^quick_shift` raw: the smallest that
     /// takes every sphere's `r + ε` below `2¹⁶` units (set with `narrow`).
     pub(crate) quick_shift: u32,
@@ -461,6 +474,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         narrow: None,
         narrow_lights: heapless::Vec::new(),
         across: [[[0; 3]; 2]; L],
+        points: [NarrowPoint {
+            dir: [0; 3],
+            distance: 0,
+        }; L],
         quick_shift: 0,
         use_spans: true,
         #[cfg(all(feature = "antialias", feature = "full-width"))]
@@ -697,14 +714,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                         )?,
                     }
                 }
+                // The narrow kernel renders point lights of radius 0 only.
                 #[cfg(not(feature = "full-width"))]
-                Light::Point { .. } => {
+                Light::Point { radius, .. } if radius > 0.0 => {
                     return Err(RenderError::NeedsFullWidth {
                         item,
-                        field: "type",
+                        field: "radius",
                     })
                 }
-                #[cfg(feature = "full-width")]
                 Light::Point {
                     position,
                     color,

@@ -1,5 +1,6 @@
 //! shadeline built without the feature `full-width`: the fixed path holds only its narrow
-//! kernel, and `PreparedFixed` refuses each kind of frame that kernel does not take with
+//! kernel (distant and point lights), and `PreparedFixed` refuses each kind of frame that
+//! kernel does not take with
 //! `RenderError::NeedsFullWidth` naming the first item and field that keep it from it, and
 //! leaves the frame empty. Each test fails if the refusal does not fire, as it would in a
 //! build with `full-width` on, where these frames render. The frames it does take are the
@@ -63,8 +64,8 @@ fn the_narrow_frames_render() {
 }
 
 #[test]
-fn a_point_light_is_refused_at_its_type() {
-    let s = scene(40.0, |s| {
+fn a_point_light_renders_without_the_full_width_kernel() {
+    let lit = |s: &mut Scene<4, 2>| {
         s.add_light(Light::Point {
             position: Vec3::new(0.0, 4.0, 4.0),
             color: LinearRgb::new(1.0, 1.0, 1.0),
@@ -72,19 +73,16 @@ fn a_point_light_is_refused_at_its_type() {
             radius: 0.0,
         })
         .unwrap();
-    });
-    assert_eq!(
-        refusal(&s),
-        Some(RenderError::NeedsFullWidth {
-            item: Item::Light(1),
-            field: "type"
-        })
-    );
-    let message = refusal(&s).unwrap().to_string();
-    assert!(
-        message.contains("light 1") && message.contains("full-width"),
-        "{message}"
-    );
+    };
+    let (with, without) = (scene(40.0, lit), scene(40.0, |_| {}));
+    let mut lines = [[Rgb565::default(); 64]; 2];
+    for (s, line) in [&with, &without].into_iter().zip(&mut lines) {
+        let frame = PreparedFixed::new(s, 64, 48).unwrap();
+        frame.render_line(24, line).unwrap();
+    }
+    // The lamp above the spheres brightens them: the rows differ on the spheres only.
+    assert_ne!(lines[0][16], lines[1][16]);
+    assert_eq!(lines[0][0], lines[1][0]);
 }
 
 #[test]
