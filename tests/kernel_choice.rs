@@ -65,35 +65,35 @@ fn the_exponent_series_takes_the_narrow_kernel_on_every_path() {
 #[test]
 fn the_first_point_light_or_normalized_sphere_is_named() {
     // One point light: every float path names it, whichever the materials; the fixed path's
-    // narrow kernel takes point lights, and names the first normalized sphere instead.
+    // narrow kernel takes point lights and the normalized models.
     let point = Kernel::General {
         item: Item::Light(0),
         field: "type",
     };
     for scene in [lamp().unwrap(), three_lights().unwrap()] {
-        let first = scene
-            .spheres()
-            .iter()
-            .position(|s| !s.material.model.is_classic() && s.material.model != Model::Lambert)
-            .expect("the scene has normalized spheres");
-        let model = Kernel::General {
-            item: Item::Sphere(first),
-            field: "model",
-        };
-        assert_eq!(kernels(&scene, 320, 240), [point, point, point, model]);
+        assert_eq!(
+            kernels(&scene, 320, 240),
+            [point, point, point, Kernel::Narrow]
+        );
     }
-    // Distant lights only: the first sphere that is not classic.
-    let scene = materials().unwrap();
-    let first = scene
-        .spheres()
-        .iter()
-        .position(|s| !s.material.model.is_classic())
-        .expect("the gallery has normalized spheres");
-    let model = Kernel::General {
-        item: Item::Sphere(first),
+    // Distant lights only: the first sphere that is not classic, on the float paths; the
+    // fixed path's first Oren–Nayar or GGX sphere.
+    let scene = microfacets().unwrap();
+    let first = |keep: fn(&Model) -> bool| Kernel::General {
+        item: Item::Sphere(
+            scene
+                .spheres()
+                .iter()
+                .position(|s| keep(&s.material.model))
+                .expect("the gallery has such a sphere"),
+        ),
         field: "model",
     };
-    assert_eq!(kernels(&scene, 160, 90), [model; 4]);
+    let float = first(|m| !m.is_classic());
+    let fixed = first(|m| matches!(m, Model::OrenNayar { .. } | Model::Ggx(_)));
+    assert_eq!(kernels(&scene, 160, 90), [float, float, float, fixed]);
+    // The gallery of every other model: the fixed path takes it with its narrow kernel.
+    assert_eq!(kernels(&materials().unwrap(), 160, 90)[3], Kernel::Narrow);
 }
 
 #[test]

@@ -448,15 +448,26 @@ fn render_names_the_kernel_and_why() {
     let dir = temp_dir("kernel");
     let out = shadeline(
         &[
-            "render", "--preset", "lamp", "--width", "32", "--height", "24", "--path", "fixed",
-            "--repeat", "1", "-o", "lamp.png",
+            "render",
+            "--preset",
+            "area-lights",
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--path",
+            "fixed",
+            "--repeat",
+            "1",
+            "-o",
+            "area.png",
         ],
         &dir,
     );
     assert!(out.status.success(), "{}", stderr(&out));
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
-        stdout.contains("fixed    kernel: full-width, because of sphere 1: `model`"),
+        stdout.contains("fixed    kernel: full-width, because of light 0: `radius`"),
         "{stdout}"
     );
 }

@@ -191,14 +191,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         {
             return Err((Item::Light(light), "radius"));
         }
-        // Lambert shades as a classic sphere with no lobe (`Params::lambert`, and no cutoff
-        // below); the other normalized models need the full-width kernel.
+        // Oren–Nayar and GGX need the full-width kernel (without it, `prepare_fields` has
+        // refused them already).
         #[cfg(feature = "full-width")]
-        if let Some(sphere) = self
-            .spheres
+        if let Some(sphere) = scene
+            .spheres()
             .iter()
-            .zip(scene.spheres())
-            .position(|(s, m)| s.normalized && !matches!(m.material.model, Model::Lambert))
+            .position(|s| matches!(s.material.model, Model::OrenNayar { .. } | Model::Ggx(_)))
         {
             return Err((Item::Sphere(sphere), "model"));
         }
@@ -246,12 +245,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         for i in 0..self.spheres.len() {
             let m = scene.spheres().get(i).map(|s| s.material);
             let n = m.map_or(1.0, |m| m.shininess);
-            // A Lambert sphere has no lobe: no light's `h` is below a cutoff of 0.
-            let intensity = match m {
-                Some(m) if matches!(m.model, Model::Lambert) => 0.0,
+            // A Lambert sphere has no lobe: no light's `h` is below a cutoff of 0. The
+            // normalized models shade every light with their terms (`terms`), which have no
+            // cutoff.
+            let model = m.map(|m| m.model);
+            let terms = !matches!(
+                model,
+                None | Some(Model::Phong | Model::BlinnPhong | Model::Lambert)
+            );
+            let intensity = match model {
+                Some(Model::Lambert) => 0.0,
                 _ => intensity + self.point_intensity(i),
             };
-            self.prepare_narrow_sphere(scene, i, (&view, &gram), (n, intensity))
+            self.prepare_narrow_sphere(scene, i, (&view, &gram), (n, intensity, terms))
                 .map_err(|field| (Item::Sphere(i), field))?;
         }
         self.narrow = Some(view);
@@ -268,7 +274,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         scene: &Scene<S, L>,
         i: usize,
         (view, gram): (&NarrowView, &[i64; 6]),
-        (n, intensity): (f32, f32),
+        (n, intensity, terms): (f32, f32, bool),
     ) -> Result<(), &'static str> {
         let Some(s) = self.spheres.get(i) else {
             return Err("center");
@@ -349,9 +355,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             quick_margin: self.quick_margin(i),
             touching: self.touching(i),
             fast_lobe_max,
+            terms,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
                 as u32,
-            cutoff,
+            cutoff: if terms { u32::MAX } else { cutoff },
             e_shift,
             g_shift,
             cross_shift: bits + 14,

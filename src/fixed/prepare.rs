@@ -98,6 +98,9 @@ pub(crate) struct NarrowSphere {
     pub gain: u32,
     /// Whether `b = oc·D` grows along a row (`oc·step_x > 0`).
     pub b_rises: bool,
+    /// A normalized model (not Lambert): every light is shaded with the full-width
+    /// kernel's normalized terms from the narrow kernel's precise cosines (`precise_light`).
+    pub terms: bool,
     /// `E′`, see above.
     pub e: Quadric,
     /// The rows and the columns on which `E′` can be at least 0, each `[start, end)` (see
@@ -174,10 +177,8 @@ pub(crate) struct FixedSphere {
     pub blinn: bool,
     /// A normalized model (or Lambert): the kernel's `normalized` terms, not the classic ones.
     pub normalized: bool,
-    #[cfg(feature = "full-width")]
     /// Schlick's factor applies.
     pub schlick: bool,
-    #[cfg(feature = "full-width")]
     /// The diffuse lobe is multiplied by `1 − F`.
     pub diffuse_loss: bool,
     pub center: V3<Len>,
@@ -188,13 +189,10 @@ pub(crate) struct FixedSphere {
     /// full-width kernel reads it.
     #[cfg(feature = "full-width")]
     pub inv_radius: (u32, u32),
-    #[cfg(feature = "full-width")]
     /// Normalized models: each lobe's weight times its normalization factor, exact.
     pub weight: [Exact; LOBES],
-    #[cfg(feature = "full-width")]
     /// Exponents of lobes 1 and 2.
     pub more_shininess: [Exact; MORE_LOBES],
-    #[cfg(feature = "full-width")]
     /// `F₀` per channel, U2F30 (`1 << 30` is 1).
     pub f0: [u32; 3],
     /// The sphere's spans: its screen rectangle and its outline's row conic; `None` if the
@@ -622,19 +620,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let params = Params::<f32>::of(m);
             #[cfg(not(feature = "full-width"))]
             let params = match m.model {
-                Model::Phong | Model::BlinnPhong => Params::<f32>::classic(m),
-                Model::Lambert => Params::<f32>::lambert(m),
-                _ => {
+                Model::OrenNayar { .. } | Model::Ggx(_) => {
                     return Err(RenderError::NeedsFullWidth {
                         item,
                         field: "model",
                     })
                 }
+                _ => Params::<f32>::of(m),
             };
             let kd_albedo = params.kd_albedo;
             let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
             let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
-            #[cfg(any(feature = "full-width", feature = "models"))]
             let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
             let sphere = FixedSphere {
                 center,
@@ -647,15 +643,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 shininess: Exact::from_f32(m.shininess),
                 blinn: params.blinn > 0.0,
                 normalized: params.normalized > 0.0,
-                #[cfg(feature = "full-width")]
                 weight: params.weight.map(Exact::from_f32),
-                #[cfg(feature = "full-width")]
                 more_shininess: params.more_shininess.map(Exact::from_f32),
-                #[cfg(feature = "full-width")]
                 f0: [params.f0.x, params.f0.y, params.f0.z].map(unit),
-                #[cfg(feature = "full-width")]
                 schlick: params.schlick > 0.0,
-                #[cfg(feature = "full-width")]
                 diffuse_loss: params.diffuse_loss > 0.0,
                 #[cfg(feature = "full-width")]
                 bounds: view.bounds(s.center, s.radius),
