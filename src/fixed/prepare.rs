@@ -22,15 +22,11 @@ use super::roots::inv_sqrt;
 #[cfg(feature = "full-width")]
 use super::spans::{Bounds, View};
 use super::vector::{each3, Len, Unit, V3};
-#[cfg(feature = "full-width")]
-use crate::brdf::LOBES;
-use crate::brdf::{Params, BLINN_PHONG};
+use crate::brdf::{Params, BLINN_PHONG, LOBES};
 use crate::render::{Kernel, RenderError};
 #[cfg(not(feature = "full-width"))]
 use crate::scene::Model;
-#[cfg(feature = "full-width")]
-use crate::scene::MORE_LOBES;
-use crate::scene::{Item, Light, Scene};
+use crate::scene::{Item, Light, Scene, MORE_LOBES};
 use crate::vec3::Vec3;
 use crate::MAX_DIMENSION;
 use fixed::types::{I16F48, I32F32, U16F16};
