@@ -13,10 +13,13 @@
 //! # When it applies
 //!
 //! A frame uses it (the prepare's `NarrowView`) when every light is distant or a point light
-//! of radius 0, every sphere uses a classic model (Phong or Blinn-Phong, not normalized) or Lambert (a classic
-//! sphere of diffuse weight `kd·albedo/π` and no lobe), the camera is outside every sphere, and the image plane is narrow enough that every primary
-//! direction is within `√2` of the central one in length (a field of view up to about 90° on
-//! the diagonal). Every other frame renders with the full-width kernel alone. The
+//! of radius 0, no sphere uses Oren–Nayar or GGX, the camera is outside every sphere, and
+//! the image plane is narrow enough that every primary direction is within `√2` of the
+//! central one in length (a field of view up to about 90° on the diagonal). Every other frame
+//! renders with the full-width kernel alone. Lambert shades as a classic sphere of diffuse
+//! weight `kd·albedo/π` and no lobe; the normalized models, and every sphere of a frame with a
+//! point light, take the precise cosines (`precise_light`, below), in a pixel loop of their
+//! own (`PRECISE`), so that the other frames' loop holds none of that code. The
 //! conditions are frame-wide, so a pixel's result does not depend on which spheres' spans
 //! cover it (turning spans off changes no pixel).
 //!
@@ -81,6 +84,10 @@
 //! shadow ray starts at `X` lifted by `ε`, toward the light as seen from `X`, and counts a
 //! caster only before the light; the caster mask is the full-width kernel's
 //! (`Scene::shadow_casters`), with no filter before it.
+//!
+//! A sphere of a normalized model shades each light with the full-width kernel's terms
+//! (`normalized_terms`: the lobes' weighted sum times `N·L`, Schlick's `F` per channel from
+//! `L·H = |L + V|/2`, the diffuse loss), from the same precise cosines.
 //!
 //! # Where the lobe needs more bits
 //!
@@ -611,8 +618,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     ///
     /// `N`: the frame's number of lights if it is known where the pixel loop is compiled
     /// (see [`Self::light_count`]), so that the loops over lights have a fixed length.
+    /// `PRECISE`: whether the frame has point lights or normalized spheres, which take the
+    /// precise cosines (`precise_light`); without it that code is not in the loop.
     #[inline(always)]
-    pub(crate) fn narrow_shade<const N: usize>(
+    pub(crate) fn narrow_shade<const N: usize, const PRECISE: bool>(
         &self,
         run: &mut NarrowRun<S, L>,
         single: Option<usize>,
@@ -625,7 +634,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let shaded = match surface.and_then(|s| Some((s, run.tracks.get(s.track)?))) {
             Some((surface, t)) => {
-                self.narrow_lights::<N>(&surface, &t.g, (run.d, &run.dl), record_hits)
+                self.narrow_lights::<N, PRECISE>(&surface, &t.g, (run.d, &run.dl), record_hits)
             }
             None => Narrow::Done(None),
         };
@@ -741,7 +750,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The `lights` and `combine` stages at `surface` (under the run's current pixel).
     #[inline(always)]
-    fn narrow_lights<const N: usize>(
+    fn narrow_lights<const N: usize, const PRECISE: bool>(
         &self,
         surface: &Surface,
         g: &[Step; L],
@@ -777,8 +786,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let n = self.light_count::<N>().min(L);
         for light_index in 0..n {
             let (light, g, dl) = (&lights[light_index], &g[light_index], &dl[light_index]);
-            let point = matches!(self.lights.get(light_index), Some(FixedLight::Point { .. }));
-            if point || ns.terms {
+            // Only in the frames with a point light or a normalized sphere: the others' loop
+            // holds none of this (their registers are the fast path's).
+            let point =
+                PRECISE && matches!(self.lights.get(light_index), Some(FixedLight::Point { .. }));
+            if PRECISE && (point || ns.terms) {
                 let seen =
                     self.precise_light(surface, (sphere, ns, light), light_index, d, (g.v, dl.v));
                 let Some((dif, spec)) = seen else {
@@ -1919,15 +1931,16 @@ mod tests {
                     assert!(frame.narrow_run(&mut a, run.start, run.end, y, &spans));
                     assert!(frame.narrow_run(&mut b, run.start, run.end, y, &spans));
                     for _ in run.start..run.end {
-                        let general = frame.narrow_shade::<0>(&mut a, None, true);
+                        let general = frame.narrow_shade::<0, true>(&mut a, None, true);
                         let fast = match b.single() {
                             Some((track, _)) => {
                                 single += 1;
-                                let shaded = frame.narrow_shade::<0>(&mut b, Some(track), true);
+                                let shaded =
+                                    frame.narrow_shade::<0, true>(&mut b, Some(track), true);
                                 b.refresh();
                                 shaded
                             }
-                            None => frame.narrow_shade::<0>(&mut b, None, true),
+                            None => frame.narrow_shade::<0, true>(&mut b, None, true),
                         };
                         let key = |n: Narrow| match n {
                             Narrow::Done(s) => Some(s.map(|s| (s.color, s.hit))),

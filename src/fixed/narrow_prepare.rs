@@ -260,6 +260,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             self.prepare_narrow_sphere(scene, i, (&view, &gram), (n, intensity, terms))
                 .map_err(|field| (Item::Sphere(i), field))?;
         }
+        self.precise_pixels = self
+            .lights
+            .iter()
+            .any(|l| matches!(l, FixedLight::Point { .. }))
+            || self
+                .spheres
+                .iter()
+                .any(|s| s.narrow.is_some_and(|n| n.terms));
         self.narrow = Some(view);
         Ok(())
     }

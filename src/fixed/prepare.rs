@@ -304,6 +304,10 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) across: [[[i16; 3]; 2]; L],
     /// Per point light, its direction and distance from the eye (set with `narrow`).
     pub(crate) points: [NarrowPoint; L],
+    /// Whether some pixels take the narrow kernel's precise cosines (a point light, or a
+    /// sphere of a normalized model): the row driver's choice of pixel loop (set with
+    /// `narrow`).
+    pub(crate) precise_pixels: bool,
     /// The quick caster test's unit of length, `2^quick_shift` raw: the smallest that
     /// takes every sphere's `r + ε` below `2¹⁶` units (set with `narrow`).
     pub(crate) quick_shift: u32,
@@ -472,6 +476,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             dir: [0; 3],
             distance: 0,
         }; L],
+        precise_pixels: false,
         quick_shift: 0,
         use_spans: true,
         #[cfg(all(feature = "antialias", feature = "full-width"))]
@@ -525,6 +530,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         self.narrow = None;
         self.narrow_lights.clear();
+        self.precise_pixels = false;
         self.use_spans = true;
         #[cfg(all(feature = "antialias", feature = "full-width"))]
         {

@@ -167,20 +167,28 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // One light (always, at a capacity of one): the loops over lights have a fixed
         // length. Not on ARMv6-M, where the fixed-length loop made the exponent series
         // dearer: its eight registers were allocated worse.
-        if cfg!(not(shadeline_short_mul)) && (L == 1 || self.lights.len() == 1) {
-            self.narrow_loop::<1, P>(narrow, start, run_pixels, &finish);
+        // A frame with a point light or a normalized sphere (`precise_pixels`) takes a loop
+        // of its own, so that the others' loops carry none of the precise cosines' code.
+        let one = cfg!(not(shadeline_short_mul)) && (L == 1 || self.lights.len() == 1);
+        if self.precise_pixels && one {
+            self.narrow_loop::<1, P, true>(narrow, start, run_pixels, &finish);
+        } else if self.precise_pixels {
+            self.narrow_loop::<0, P, true>(narrow, start, run_pixels, &finish);
+        } else if one {
+            self.narrow_loop::<1, P, false>(narrow, start, run_pixels, &finish);
         } else {
-            self.narrow_loop::<0, P>(narrow, start, run_pixels, &finish);
+            self.narrow_loop::<0, P, false>(narrow, start, run_pixels, &finish);
         }
         true
     }
 
     /// The pixel loop of [`Self::narrow_pixels`] over `run_pixels` from column `start`,
-    /// `finish` encoding and storing each; `N` as [`Self::narrow_shade`] takes it. Inlined on
+    /// `finish` encoding and storing each; `N` and `PRECISE` as [`Self::narrow_shade`] takes
+    /// them. Inlined on
     /// ARMv6-M, out of line elsewhere: measured, each is the cheaper there (QEMU counts).
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
-    fn narrow_loop<const N: usize, P: Pixel>(
+    fn narrow_loop<const N: usize, P: Pixel, const PRECISE: bool>(
         &self,
         narrow: &mut NarrowRun<S, L>,
         start: u32,
@@ -212,7 +220,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 narrow.skip(count as u32, self.light_count::<N>());
             } else {
                 for (px, c) in now.iter_mut().zip(column..) {
-                    finish(px, self.narrow_shade::<N>(narrow, single, P::NEEDS_HITS), c);
+                    finish(
+                        px,
+                        self.narrow_shade::<N, PRECISE>(narrow, single, P::NEEDS_HITS),
+                        c,
+                    );
                 }
             }
             if single.is_some() {

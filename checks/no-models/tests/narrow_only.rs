@@ -1,6 +1,6 @@
 //! shadeline built without the feature `full-width`: the fixed path holds only its narrow
-//! kernel (distant and point lights), and `PreparedFixed` refuses each kind of frame that
-//! kernel does not take with
+//! kernel (distant and point lights, the classic and normalized models), and `PreparedFixed`
+//! refuses each kind of frame that kernel does not take with
 //! `RenderError::NeedsFullWidth` naming the first item and field that keep it from it, and
 //! leaves the frame empty. Each test fails if the refusal does not fire, as it would in a
 //! build with `full-width` on, where these frames render. The frames it does take are the
@@ -86,18 +86,22 @@ fn a_point_light_renders_without_the_full_width_kernel() {
 }
 
 #[test]
-fn a_normalized_sphere_is_refused_at_its_model() {
+fn a_normalized_sphere_renders_without_the_full_width_kernel() {
+    // The two classic spheres at x = ±1.5 and a normalized one between them, in front.
     let s = scene(40.0, |s| {
-        s.add_sphere(sphere(0.0, Model::NormalizedPhong(Specular::default())))
-            .unwrap();
+        let mut normalized = sphere(0.0, Model::NormalizedPhong(Specular::default()));
+        normalized.center = Vec3::new(0.0, 0.0, 2.0);
+        normalized.radius = 0.5;
+        s.add_sphere(normalized).unwrap();
     });
-    assert_eq!(
-        refusal(&s),
-        Some(RenderError::NeedsFullWidth {
-            item: Item::Sphere(2),
-            field: "model"
-        })
-    );
+    let frame = PreparedFixed::new(&s, 64, 48).unwrap();
+    let mut line = [Rgb565::default(); 64];
+    frame.render_line(24, &mut line).unwrap();
+    let plain = PreparedFixed::new(&scene(40.0, |_| {}), 64, 48).unwrap();
+    let mut without = [Rgb565::default(); 64];
+    plain.render_line(24, &mut without).unwrap();
+    assert_ne!(line[32], without[32], "the normalized sphere at the centre");
+    assert_eq!(line[0], without[0]);
 }
 
 /// Lambert takes the narrow kernel: a classic sphere with `kd·albedo/π` and no lobe.
