@@ -146,7 +146,9 @@ mod exact;
 mod kernel;
 mod mul;
 mod narrow;
+mod narrow_precise;
 mod narrow_prepare;
+mod narrow_shadow;
 #[cfg(not(feature = "full-width"))]
 mod outline;
 mod pow;

@@ -120,13 +120,10 @@
 //! 16×16→32 bits (`|x| ≤ 2¹⁶` operands) except in the row's set-up, the precise lobe, the
 //! normal for caster tests and the per-channel scaling by the light's colour.
 
-use super::exact::{arriving, shift_saturating, Exact};
+use super::exact::{shift_saturating, Exact};
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
-use super::narrow_prepare::QUICK_CASTER_TEST;
 use super::pow::{EXP_TABLE, INV_LN2_F31, LOG_TABLE};
-use super::prepare::{
-    FixedLight, FixedSphere, NarrowLight, NarrowSphere, NarrowView, PreparedFixed,
-};
+use super::prepare::{FixedLight, NarrowSphere, NarrowView, PreparedFixed};
 use super::quadric::Step;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{each3, V3};
@@ -142,7 +139,7 @@ const ONE: i32 = 1 << 15;
 /// prepare's scaling every point of every sphere lies within `2²⁹` raw per component, so a
 /// surface point lifted by `ε` (below `2¹⁶` raw) along a normal so bounded lies within
 /// `2²⁹ + 2²²`, and its offset from another sphere's centre within `2³⁰ + 2²²`.
-const NORMAL_LIMIT: i32 = ONE + (ONE >> 8);
+pub(super) const NORMAL_LIMIT: i32 = ONE + (ONE >> 8);
 
 /// What a kernel (the narrow one, or the full-width one) found for one pixel: linear colour
 /// in U16F16 (saturated) and the hit record (shadowed bits only when asked for).
@@ -297,13 +294,13 @@ fn activity<const S: usize, const L: usize>(
 /// The surface under a pixel: the sphere and its track, `E′` as held, `N·V` (Q15), and
 /// `σ = 1/|d|` (Q15) with `σ²` (Q16).
 #[derive(Clone, Copy)]
-struct Surface {
-    index: usize,
-    track: usize,
-    e: i64,
-    nv: i32,
-    sigma: i32,
-    sigma2: u32,
+pub(super) struct Surface {
+    pub index: usize,
+    pub track: usize,
+    pub e: i64,
+    pub nv: i32,
+    pub sigma: i32,
+    pub sigma2: u32,
 }
 
 /// Bins of [`SIGMA_TABLE`] per unit of `|d|²`.
@@ -455,7 +452,7 @@ fn precise_h(
 /// Blinn-Phong's half vector is undefined, `L = −V`): the tail of [`precise_h`], and of a
 /// point light's lobe (`point_light`).
 #[inline(always)]
-fn precise_h_of(blinn: bool, nl: i64, nv: i64, ld: i64) -> Option<u64> {
+pub(super) fn precise_h_of(blinn: bool, nl: i64, nv: i64, ld: i64) -> Option<u64> {
     const ONE30: i64 = 1 << 30;
     let cos = if blinn {
         // N·H = (N·L + N·V)/|L + V|, |L + V|² = 2 − 2·L·D̂ (V = −D̂), Q30.
@@ -501,7 +498,7 @@ fn fast_lobe(ns: &NarrowSphere, n: Exact, h: u32, trusted: bool) -> Option<u32> 
 /// `(v >> s) as i32` for `s` in `1..=31`, where the result fits: two 32-bit shifts (a
 /// variable 64-bit shift is a library call on ARMv6-M).
 #[inline(always)]
-fn high_bits(v: i64, s: u32) -> i32 {
+pub(super) fn high_bits(v: i64, s: u32) -> i32 {
     debug_assert!((1..32).contains(&s), "shift {s}");
     debug_assert!((v >> s) as i32 as i64 == v >> s, "{v} >> {s} does not fit");
     let s = s & 31;
@@ -857,363 +854,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }))
     }
 
-    /// Light `light_index` at a narrow hit, from the precise cosines: its diffuse and
-    /// specular sums (U16F16 per channel, before `kd·albedo` and `ks`), or `None` where it is
-    /// blocked. The path of point lights, and of every light on a sphere of a normalized model
-    /// (`NarrowSphere::terms`, whose terms are the full-width kernel's, `normalized_terms`).
-    /// In 30-bit fractions and raw lengths throughout, from the exact quadrics of the light's
-    /// direction (`G` and `D·L` as the run holds them, `g_dl`); for a point light that is the
-    /// direction `q̂` from the eye toward it: with `Q = P − eye`, `t` the hit's distance
-    /// along `D̂` and `X = eye + t·D̂`,
-    ///
-    /// ```text
-    /// N·(P − X) = |Q|·(N·q̂) + t·(N·V)        N·q̂ = G·σ² − (N·V)(q̂·D̂)
-    /// (P − X)·D̂ = |Q|·(q̂·D̂) − t             t = −(oc·D̂) − r·(N·V)
-    /// |P − X|²  = ((P − X)·D̂)² + |Q|² − (|Q|·(q̂·D̂))²
-    /// ```
-    ///
-    /// then `N·L` and `L·D̂` over `|P − X|`, and `h` as [`precise_h`] makes it. `σ` and
-    /// `N·V` come from [`super::roots`] (within `2⁻³⁰`), so `t` is within a few raw units,
-    /// whatever the sphere's radius: a floor's pixels under a nearby lamp need that, where the
-    /// fast Q15 forms would leave `t` off by `r·2⁻¹⁵`. No term cancels beyond the distance's
-    /// own size. Out of line: a point light's pixels take 64-bit products and two roots.
-    #[inline(never)]
-    fn precise_light(
-        &self,
-        surface: &Surface,
-        (sphere, ns, light): (&FixedSphere, &NarrowSphere, &NarrowLight),
-        light_index: usize,
-        d: V3<i32>,
-        (g, dl): (i64, i64),
-    ) -> Option<([u32; 3], [u32; 3])> {
-        const ONE30: i64 = 1 << 30;
-        let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
-        let (ya, sa) = inv_sqrt(a)?;
-        // σ = 2²⁹/|D| in Q31, N·V and q̂·D̂ in Q30, as in `precise_h`.
-        let sigma = shift_saturating(ya as u64, 60 - sa as i32).min(1 << 31);
-        let e60 = (surface.e.max(0) as u64) << (31 - ns.e_shift.min(31));
-        let root = sqrt(e60).min(u32::MAX as u64) as u32;
-        let nv = ((mul_uu(root, sigma) >> 31) as i64).min(ONE30);
-        let qd = (mul_iu((dl >> 29) as i32, sigma) >> 31).clamp(-ONE30, ONE30);
-        let g29 = high_bits(g, ns.g_shift);
-        let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
-        let nq = ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, qd as i32) >> 30))
-            .clamp(-ONE30, ONE30);
-        let (nl, ld, arriving) = match self.lights.get(light_index)? {
-            FixedLight::Point { power, position } => {
-                let point = self.points.get(light_index)?;
-                // t, raw: on a hit b = oc·D < 0, and (−b)/2³⁰ is −oc·d/2 (below 2³¹), times σ.
-                let b = dot_ii(sphere.eye_offset.map(|c| c.to_bits()), d);
-                let along = (mul_uu(((-b).max(0) >> 30) as u32, sigma) >> 30) as i64;
-                let t = along - (mul_uu(sphere.radius.to_bits() as u32, nv as u32) >> 30) as i64;
-                // Every point lies within 2³⁰ raw of the origin per component: each length below 2³¹.
-                let q = point.distance;
-                let qq = (q * qd) >> 30;
-                let pd = qq - t;
-                let np = ((q * nq) >> 30) + ((t * nv) >> 30);
-                let perp2 = (q * q - qq * qq).max(0) as u64;
-                let dist2 = (pd * pd) as u64 + perp2;
-                let inv = inv_sqrt(dist2)?;
-                let (y, shift) = inv;
-                let over = |v: i64| {
-                    let v = v.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
-                    (mul_iu(v, y) >> (shift - 30).min(63)).clamp(-ONE30, ONE30)
-                };
-                let (nl, ld) = (over(np), over(pd));
-                // The sphere's own shadow, as for a distant light (the light lies outside it).
-                if nl < 0 && (mul_ii(nl as i32, nl as i32) >> 30) as u64 > ns.shadow_limit as u64 {
-                    return None;
-                }
-                if light.casters != 0 {
-                    // The ray leaves the hit point `X = eye + t·D̂` lifted by `ε·N` (within a few raw
-                    // units, where `C + (r + ε)·N` from the Q15 normal could be `r·2⁻¹²` off) toward
-                    // the light as seen from `X`, up to `|P − X|`, as the full-width kernel's does.
-                    let blocked = self.blocked_along(surface.index, light.casters, || {
-                        let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
-                        let eps = self.epsilon.to_bits() as i64;
-                        let (mut origin, mut to_light) = ([0; 3], [0; 3]);
-                        for i in 0..3 {
-                            let unit = mul_iu(d[i], sigma) >> 30; // D̂, Q30
-                            let x = self.eye[i].to_bits() as i64
-                                + ((t.clamp(0, i32::MAX as i64) * unit) >> 30);
-                            let n = n[i].clamp(-NORMAL_LIMIT, NORMAL_LIMIT) as i64;
-                            origin[i] = (x + ((eps * n) >> 15)) as i32;
-                            // P − X is within the light's distance, below 2³¹ raw.
-                            let v = (position[i].to_bits() as i64 - x)
-                                .clamp(i32::MIN as i64, i32::MAX as i64)
-                                as i32;
-                            to_light[i] = (mul_iu(v, y) >> (shift - 30).min(63)) as i32;
-                        }
-                        (origin, to_light, sqrt(dist2) as i64)
-                    });
-                    if blocked {
-                        return None;
-                    }
-                }
-                (nl, ld, arriving(*power, inv))
-            }
-            FixedLight::Distant { .. } => {
-                // The fast path's shadow rules, on the precise `N·L`.
-                let nl15 = (nq >> 15) as i32;
-                if nl15 < 0 && (nl15 * nl15) as u32 > ns.shadow_limit {
-                    return None;
-                }
-                if light.casters != 0 && nl15 < light.ahead && (nl15 * nl15) as u32 <= light.reach {
-                    let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
-                    if self.narrow_blocked(surface.index, n, light_index, light.casters) {
-                        return None;
-                    }
-                }
-                (nq, qd, light.arriving)
-            }
-            #[allow(unreachable_patterns)]
-            _ => return None,
-        };
-        if ns.terms {
-            return Some(normalized_terms(sphere, (nl, nv, ld), arriving));
-        }
-        let nl15 = (nl >> 15) as i32;
-        let diffuse = if nl15 > 0 {
-            each3(|c| scale_q15(arriving[c], nl15))
-        } else {
-            [0; 3]
-        };
-        let lobe = match precise_h_of(sphere.blinn(), nl, nv, ld) {
-            Some(h) if (h >> 30) < ns.cutoff as u64 => {
-                narrow_lobe(u32::try_from(h >> 30).unwrap_or(u32::MAX), sphere.shininess)
-            }
-            _ => 0,
-        };
-        Some((diffuse, each3(|c| scale_q16(arriving[c], lobe))))
-    }
-
-    /// The unit normal (Q15) of a narrow hit, for caster tests: `N = D̂ × u − (N·V)·D̂` with
-    /// `u = (oc × D)·σ/(r·2²⁹)` from six exact 32×32→64 products. Out of line on ARMv6-M,
-    /// where the pixel loop needs its registers.
-    #[cfg_attr(shadeline_short_mul, inline(never))]
-    #[cfg_attr(not(shadeline_short_mul), inline(always))]
-    fn narrow_normal(
-        &self,
-        sphere: &FixedSphere,
-        ns: &NarrowSphere,
-        d: V3<i32>,
-        sigma: i32,
-        nv: i32,
-    ) -> V3<i32> {
-        let oc = sphere.eye_offset.map(|c| c.to_bits());
-        let w = [
-            mul_ii(oc[1], d[2]) - mul_ii(oc[2], d[1]),
-            mul_ii(oc[2], d[0]) - mul_ii(oc[0], d[2]),
-            mul_ii(oc[0], d[1]) - mul_ii(oc[1], d[0]),
-        ];
-        // |oc × D| ≤ r·|D| on a hit (up to E′'s rounding, far below a unit here) and
-        // |D| ≤ √2·2²⁹ in a narrow frame: below √2·2¹⁵ after the shift, so `c·mu` below
-        // (mu ≤ 2¹⁵) fits an `i32`.
-        let high = w.map(|c| {
-            let high = c >> ns.cross_shift.min(63);
-            debug_assert!(high.unsigned_abs() < 46_400, "|oc × D| above r·|D|: {high}");
-            high as i32
-        });
-        let mu = ((sigma as u32 * ns.gain) >> 16) as i32; // ≤ 2¹⁵
-        let u = high.map(|c| (c * mu) >> 14);
-        let dh = d.map(|c| ((c >> 15) * sigma) >> 14);
-        let cross = [
-            dh[1] * u[2] - dh[2] * u[1],
-            dh[2] * u[0] - dh[0] * u[2],
-            dh[0] * u[1] - dh[1] * u[0],
-        ];
-        each3(|i| (cross[i] - nv * dh[i]) >> 15)
-    }
-
-    /// Whether one of the `casters` (a mask as `NarrowLight::casters` holds it) blocks
-    /// the ray toward the distant light `to_light` from the point of sphere `index` with
-    /// normal `n`, lifted by ε: the shadow stage's caster test, from the narrow normal.
-    ///
-    /// A caster more than `4ε` from the sphere blocks iff the ray moves toward its centre
-    /// (`b = (O − C)·L < 0`) and passes within its radius (`|O − C|² − b² ≤ r²`): the lifted
-    /// point is outside it, and no square root is needed. A caster the sphere touches
-    /// ([`NarrowSphere::touching`](super::prepare::NarrowSphere), a sphere resting on a floor
-    /// sphere) takes the full-width kernel's rule, a crossing beyond `ε`
-    /// ([`Self::crosses_beyond_epsilon`]), since the lifted point may lie inside it. `light`
-    /// is the light's index.
-    #[inline(always)]
-    fn narrow_blocked(&self, index: usize, n: V3<i32>, light: usize, casters: u32) -> bool {
-        debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
-        let (Some(own), Some(FixedLight::Distant { to_light, .. })) =
-            (self.spheres.get(index), self.lights.get(light))
-        else {
-            return false;
-        };
-        let to_light = to_light.map(|c| c.to_bits());
-        let quick = own.narrow.as_ref().map_or(-1, |n| n.quick_margin);
-        let casters = if QUICK_CASTER_TEST && quick >= 0 {
-            let left = self.quick_casters(index, n, light, casters);
-            // Spheres from 32 on are not in the mask: they are always tested.
-            if left == 0 && self.spheres.len() <= 32 {
-                return false;
-            }
-            left
-        } else {
-            casters
-        };
-        self.blocked_along(index, casters, || {
-            let lift =
-                (own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64).min(i32::MAX as i64);
-            let origin = each3(|i| {
-                debug_assert!(n[i].abs() <= NORMAL_LIMIT, "normal {n:?}");
-                let n = n[i].clamp(-NORMAL_LIMIT, NORMAL_LIMIT);
-                own.center[i].to_bits() + (mul_ii(lift as i32, n) >> 15) as i32
-            });
-            (origin, to_light, i64::MAX)
-        })
-    }
-
-    /// Whether one of the `casters` of sphere `index` (a mask as `NarrowLight::casters`
-    /// holds it; spheres from 32 on always) blocks the shadow ray `ray` makes: its lifted
-    /// origin `O` (raw), unit direction `L` (I2F30) and the light's distance (raw,
-    /// `i64::MAX` for a distant light). `ray` runs at the first caster to test, if any.
-    #[inline(always)]
-    fn blocked_along(
-        &self,
-        index: usize,
-        casters: u32,
-        ray: impl FnOnce() -> (V3<i32>, V3<i32>, i64),
-    ) -> bool {
-        let touching = self
-            .spheres
-            .get(index)
-            .and_then(|s| s.narrow.as_ref())
-            .map_or(u32::MAX, |n| n.touching);
-        let (mut ray, mut made) = (Some(ray), None);
-        for (k, s) in self.spheres.iter().enumerate() {
-            if k == index || (k < 32 && casters & (1 << k) == 0) {
-                continue;
-            }
-            if let Some(ray) = ray.take() {
-                made = Some(ray());
-            }
-            let Some((origin, to_light, reach)) = made else {
-                return false;
-            };
-            // |O − C| per component is below 2³⁰ + 2²² (see `NORMAL_LIMIT`), so |O − C|² is
-            // below 2⁶² and b = (O − C)·L (L within 2⁻²⁹ of unit length) fits an `i32`:
-            // every step below is exact, with no clamp or saturation.
-            let oc = each3(|i| origin[i] - s.center[i].to_bits());
-            let b = (dot_ii(oc, to_light) >> 30) as i32;
-            let touches = k < 32 && touching & (1 << k) != 0;
-            if b >= 0 {
-                // Moving away from the caster's centre: blocked only from inside it, which
-                // a lifted point can be only at a sphere it touches.
-                if touches && self.crosses_beyond_epsilon(oc, b, s) {
-                    return true;
-                }
-                continue;
-            }
-            let miss = dot_ii(oc, oc) - mul_ii(b, b);
-            if miss <= s.radius_sq.to_bits()
-                && before(reach, b, s.radius_sq.to_bits() - miss)
-                && (!touches || self.crosses_beyond_epsilon(oc, b, s))
-            {
-                return true;
-            }
-        }
-        false
-    }
-
-    /// The `casters` (a mask of the first 32 spheres; the spheres from 32 on are not in the
-    /// mask and are always tested) that the quick caster test does not clear for sphere
-    /// `index` with normal `n` and light `light`: [`Self::quick_across`] and
-    /// [`Self::quick_clear`]. Out of line: on ARMv6-M the pixel loop needs its registers,
-    /// and one copy serves every instance of the loop.
-    #[inline(never)]
-    fn quick_casters(&self, index: usize, n: V3<i32>, light: usize, casters: u32) -> u32 {
-        let Some((at, margin)) = self.quick_across(index, n, light) else {
-            return casters;
-        };
-        let mut left = casters;
-        // By index, not by the mask's trailing zeros: ARMv6-M has no instruction for those.
-        for (k, s) in self.spheres.iter().enumerate().take(32) {
-            if casters & (1 << k) != 0 && self.quick_clear(at, margin, k, s, light) {
-                left &= !(1 << k);
-            }
-        }
-        left
-    }
-
-    /// The quick caster test's view of sphere `index`'s lifted point `O = C + (r + ε)·N`
-    /// for light `light`: `(O·u, O·v)` in its units ([`PreparedFixed::quick_shift`]; `u`, `v` the light's
-    /// [`across`](PreparedFixed::across)), from `C·u`, `C·v` and `N·u`, `N·v` in 16×16-bit
-    /// products, and the sphere's margin; `None` where the sphere has no quick test.
-    #[inline(always)]
-    fn quick_across(&self, index: usize, n: V3<i32>, light: usize) -> Option<([i32; 2], i32)> {
-        let own = self.spheres.get(index)?;
-        let margin = own.narrow.as_ref()?.quick_margin;
-        let across = self.narrow_lights.get(index)?.get(light)?.across;
-        let uv = self.across.get(light)?;
-        if margin < 0 {
-            return None;
-        }
-        // (r + ε) below 2¹⁶ units (the margin is −1 otherwise).
-        let lift = (own.radius.to_bits() + self.epsilon.to_bits()) >> self.quick_shift.min(31);
-        let [n0, n1, n2] = n;
-        let (n0, n1, n2) = (
-            n0.clamp(-NORMAL_LIMIT, NORMAL_LIMIT),
-            n1.clamp(-NORMAL_LIMIT, NORMAL_LIMIT),
-            n2.clamp(-NORMAL_LIMIT, NORMAL_LIMIT),
-        );
-        let [cu, cv] = across;
-        let [u, v] = uv;
-        // N·u in Q29 (each product below 2³⁰·1.01), then Q14: below 2¹⁴·1.02. No array
-        // maps: on ARMv6-M they go through the stack.
-        let along = |u: &[i16; 3]| {
-            let [u0, u1, u2] = *u;
-            let nu = ((n0 * u0 as i32) >> 1) + ((n1 * u1 as i32) >> 1) + ((n2 * u2 as i32) >> 1);
-            (lift * (nu >> 15)) >> 14
-        };
-        Some(([cu + along(u), cv + along(v)], margin))
-    }
-
-    /// Whether the quick caster test clears caster `k` (`s`): the lifted point `at` (see
-    /// [`Self::quick_across`]) lies farther across light `light` from the caster's centre
-    /// than its radius plus `margin`, so no ray from it along the light meets the caster
-    /// (the exact test, `narrow_blocked`'s, would find `|oc|² − b² > r²`). A few 16×16-bit
-    /// products, where the exact test takes a dozen 32×32→64-bit ones; it never clears a
-    /// caster the exact test finds blocking (test `the_quick_caster_test_changes_no_pixel`).
-    #[inline(always)]
-    fn quick_clear(
-        &self,
-        at: [i32; 2],
-        margin: i32,
-        k: usize,
-        s: &FixedSphere,
-        light: usize,
-    ) -> bool {
-        let Some(c) = self.narrow_lights.get(k).and_then(|l| l.get(light)) else {
-            return false;
-        };
-        let reach = (s.radius.to_bits() >> self.quick_shift.min(31)) + 1 + margin;
-        if reach >= 1 << 15 {
-            return false;
-        }
-        let ([au, av], [cu, cv]) = (at, c.across);
-        let (du, dv) = (au - cu, av - cv);
-        if du.abs() > reach || dv.abs() > reach {
-            return true;
-        }
-        // Both below 2¹⁵: the squares' sum below 2³¹.
-        (du * du) as u32 + (dv * dv) as u32 > (reach * reach) as u32
-    }
-
-    /// Whether the ray from `oc` (raw, from the caster's centre) along the light, `b` being
-    /// `oc·L` (raw), leaves the caster `s` beyond `ε`, given that its line meets it: ahead of
-    /// the point (`b < −ε`), or from a point inside or within `ε` of it, iff
-    /// `r² − |oc|² > ε·(2b + ε)`. Only where the sphere touches the caster; out of line.
-    #[inline(never)]
-    fn crosses_beyond_epsilon(&self, oc: V3<i32>, b: i32, s: &FixedSphere) -> bool {
-        let eps = self.epsilon.to_bits() as i64;
-        (b as i64) < -eps || s.radius_sq.to_bits() - dot_ii(oc, oc) > eps * (2 * b as i64 + eps)
-    }
-
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
     /// two: `−b/|D| − r·(N·V)`. Only pixels where spans overlap need it. On ARMv6-M, whose
     /// 64-bit products are calls of shared routines, it is out of line: smaller there.
@@ -1227,79 +867,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let along = (mul_uu(((-b) >> 30) as u32, hit.sigma as u32) >> 14) as i64;
         along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
     }
-}
-
-/// A normalized model's diffuse and specular sums for one light (U16F16 per channel, before
-/// `kd·albedo/π` and `ks = 1`) from `N·L`, `N·V` and `L·D̂` (Q30) and the arriving colour:
-/// the full-width kernel's terms, `Σ wₖcₖ·lobeₖ·(N·L)` times Schlick's `F` per channel
-/// (`L·H = |L + V|/2`, with `|L + V|² = 2 − 2·L·D̂`) and the diffuse `N·L` times `1 − F`
-/// where the model loses it, with no vector formed.
-#[inline(never)]
-fn normalized_terms(
-    sphere: &FixedSphere,
-    (nl, nv, ld): (i64, i64, i64),
-    arriving: [u32; 3],
-) -> ([u32; 3], [u32; 3]) {
-    const ONE: u32 = 1 << 30;
-    if nl <= 0 {
-        return ([0; 3], [0; 3]);
-    }
-    let n_dot_l = nl.min(ONE as i64) as u32;
-    let mut sum = 0u32;
-    if let Some(h) = precise_h_of(sphere.blinn(), nl, nv, ld) {
-        let h = u32::try_from(h >> 30).unwrap_or(u32::MAX);
-        let exponents = [
-            sphere.shininess,
-            sphere.more_shininess[0],
-            sphere.more_shininess[1],
-        ];
-        for (w, e) in sphere.weight.iter().zip(exponents) {
-            if w.mantissa != 0 {
-                // lobe·w in U16F16: (lobe·2⁻¹⁶)·(m·2^e)·2¹⁶.
-                let term = shift_saturating(mul_uu(narrow_lobe(h, e), w.mantissa), w.exponent);
-                sum = sum.saturating_add(term);
-            }
-        }
-    }
-    // Schlick: (1 − L·H)⁵ in U2F30, 0 where the half vector is undefined.
-    let len2 = ((2 << 30) - 2 * ld).max(0) as u64;
-    let weight5 = if sphere.schlick && len2 > 0 {
-        let c = (sqrt(len2 << 30) >> 1).min(ONE as u64) as u32;
-        let m = ONE - c;
-        let m2 = (mul_uu(m, m) >> 30) as u32;
-        let m4 = (mul_uu(m2, m2) >> 30) as u32;
-        (mul_uu(m4, m) >> 30) as u32
-    } else {
-        0
-    };
-    let f = sphere
-        .f0
-        .map(|f0| f0 + (mul_uu(ONE.saturating_sub(f0), weight5) >> 30) as u32);
-    let diffuse_scale = if sphere.diffuse_loss {
-        ONE - f[0].min(ONE)
-    } else {
-        ONE
-    };
-    let lit = (mul_uu(n_dot_l, diffuse_scale) >> 30) as u32;
-    let spec = (mul_uu(sum, n_dot_l) >> 30) as u32;
-    let diffuse = arriving.map(|i| u32::try_from(mul_uu(i, lit) >> 30).unwrap_or(u32::MAX));
-    let specular = each3(|c| {
-        let t = u32::try_from(mul_uu(spec, f[c]) >> 30).unwrap_or(u32::MAX);
-        u32::try_from(mul_uu(arriving[c], t) >> 16).unwrap_or(u32::MAX)
-    });
-    (diffuse, specular)
-}
-
-/// Whether a ray that meets a sphere ahead (`b = (O − C)·L < 0`, raw, and `r² − |O − C|² +
-/// b² = rest ≥ 0`) meets it before `reach` (raw): its near root `−b − √rest` is below it.
-#[inline(always)]
-fn before(reach: i64, b: i32, rest: i64) -> bool {
-    let gap = -(b as i64) - reach;
-    gap <= 0
-        || mul_ii(
-            gap.min(i32::MAX as i64) as i32,
-            gap.min(i32::MAX as i64) as i32,
-        ) < rest
 }
 
 /// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern of a `u32`.
@@ -1416,7 +983,7 @@ fn even_leading_zeros(x: u32) -> u32 {
 /// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products
 /// on ARMv6-M, one widening product elsewhere.
 #[inline(always)]
-fn scale_q16(a: u32, b: u32) -> u32 {
+pub(super) fn scale_q16(a: u32, b: u32) -> u32 {
     #[cfg(shadeline_short_mul)]
     {
         let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
@@ -1443,7 +1010,7 @@ fn mul_u16f16(k: u32, v: u32) -> u32 {
 /// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products
 /// on ARMv6-M, one widening product elsewhere.
 #[inline(always)]
-fn scale_q15(a: u32, b: i32) -> u32 {
+pub(super) fn scale_q15(a: u32, b: i32) -> u32 {
     let b = b.clamp(0, ONE) as u32;
     #[cfg(shadeline_short_mul)]
     {
@@ -1511,7 +1078,7 @@ fn front_part(start: u32, end: u32, rises: bool, b_at: impl Fn(u32) -> i64) -> O
 /// inlined in the pixel loop and the precise lobe (`docs/performance.md, "Choices measured"`).
 #[cfg_attr(shadeline_short_mul, inline(never))]
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
-fn narrow_lobe(h: u32, n: Exact) -> u32 {
+pub(super) fn narrow_lobe(h: u32, n: Exact) -> u32 {
     const ONE_Q31: u32 = 1 << 31;
     if h >= ONE_Q31 {
         return 0;

@@ -1,0 +1,210 @@
+//! The narrow kernel's precise cosines ([`super::narrow`]): `N·V`, `N·L` and `L·D̂` in 30-bit
+//! fractions from the same exact quadrics as the fast ones, with `σ` and the roots from
+//! [`super::roots`], and what is shaded from them. Two kinds of pixel take them here: every pixel
+//! lit by a point light, and every pixel of a sphere of a normalized model (`precise_light`,
+//! `normalized_terms`; the bright part of a narrow highlight takes the same cosines in
+//! `narrow`'s `precise_lobe`). They are
+//! kept apart from the fast stages because they cost a dozen 32×32→64-bit products a light
+//! (calls on ARMv6-M), and the fast pixel loop must not carry their registers.
+
+use super::exact::{arriving, shift_saturating};
+use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
+use super::narrow::{
+    high_bits, narrow_lobe, precise_h_of, scale_q15, scale_q16, Surface, NORMAL_LIMIT,
+};
+use super::prepare::{FixedLight, FixedSphere, NarrowLight, NarrowSphere, PreparedFixed};
+use super::roots::{inv_sqrt, sqrt};
+use super::vector::{each3, V3};
+
+/// A normalized model's diffuse and specular sums for one light (U16F16 per channel, before
+/// `kd·albedo/π` and `ks = 1`) from `N·L`, `N·V` and `L·D̂` (Q30) and the arriving colour:
+/// the full-width kernel's terms, `Σ wₖcₖ·lobeₖ·(N·L)` times Schlick's `F` per channel
+/// (`L·H = |L + V|/2`, with `|L + V|² = 2 − 2·L·D̂`) and the diffuse `N·L` times `1 − F`
+/// where the model loses it, with no vector formed.
+#[inline(never)]
+fn normalized_terms(
+    sphere: &FixedSphere,
+    (nl, nv, ld): (i64, i64, i64),
+    arriving: [u32; 3],
+) -> ([u32; 3], [u32; 3]) {
+    const ONE: u32 = 1 << 30;
+    if nl <= 0 {
+        return ([0; 3], [0; 3]);
+    }
+    let n_dot_l = nl.min(ONE as i64) as u32;
+    let mut sum = 0u32;
+    if let Some(h) = precise_h_of(sphere.blinn(), nl, nv, ld) {
+        let h = u32::try_from(h >> 30).unwrap_or(u32::MAX);
+        let exponents = [
+            sphere.shininess,
+            sphere.more_shininess[0],
+            sphere.more_shininess[1],
+        ];
+        for (w, e) in sphere.weight.iter().zip(exponents) {
+            if w.mantissa != 0 {
+                // lobe·w in U16F16: (lobe·2⁻¹⁶)·(m·2^e)·2¹⁶.
+                let term = shift_saturating(mul_uu(narrow_lobe(h, e), w.mantissa), w.exponent);
+                sum = sum.saturating_add(term);
+            }
+        }
+    }
+    // Schlick: (1 − L·H)⁵ in U2F30, 0 where the half vector is undefined.
+    let len2 = ((2 << 30) - 2 * ld).max(0) as u64;
+    let weight5 = if sphere.schlick && len2 > 0 {
+        let c = (sqrt(len2 << 30) >> 1).min(ONE as u64) as u32;
+        let m = ONE - c;
+        let m2 = (mul_uu(m, m) >> 30) as u32;
+        let m4 = (mul_uu(m2, m2) >> 30) as u32;
+        (mul_uu(m4, m) >> 30) as u32
+    } else {
+        0
+    };
+    let f = sphere
+        .f0
+        .map(|f0| f0 + (mul_uu(ONE.saturating_sub(f0), weight5) >> 30) as u32);
+    let diffuse_scale = if sphere.diffuse_loss {
+        ONE - f[0].min(ONE)
+    } else {
+        ONE
+    };
+    let lit = (mul_uu(n_dot_l, diffuse_scale) >> 30) as u32;
+    let spec = (mul_uu(sum, n_dot_l) >> 30) as u32;
+    let diffuse = arriving.map(|i| u32::try_from(mul_uu(i, lit) >> 30).unwrap_or(u32::MAX));
+    let specular = each3(|c| {
+        let t = u32::try_from(mul_uu(spec, f[c]) >> 30).unwrap_or(u32::MAX);
+        u32::try_from(mul_uu(arriving[c], t) >> 16).unwrap_or(u32::MAX)
+    });
+    (diffuse, specular)
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Light `light_index` at a narrow hit, from the precise cosines: its diffuse and
+    /// specular sums (U16F16 per channel, before `kd·albedo` and `ks`), or `None` where it is
+    /// blocked. The path of point lights, and of every light on a sphere of a normalized model
+    /// (`NarrowSphere::terms`, whose terms are the full-width kernel's, `normalized_terms`).
+    /// In 30-bit fractions and raw lengths throughout, from the exact quadrics of the light's
+    /// direction (`G` and `D·L` as the run holds them, `g_dl`); for a point light that is the
+    /// direction `q̂` from the eye toward it: with `Q = P − eye`, `t` the hit's distance
+    /// along `D̂` and `X = eye + t·D̂`,
+    ///
+    /// ```text
+    /// N·(P − X) = |Q|·(N·q̂) + t·(N·V)        N·q̂ = G·σ² − (N·V)(q̂·D̂)
+    /// (P − X)·D̂ = |Q|·(q̂·D̂) − t             t = −(oc·D̂) − r·(N·V)
+    /// |P − X|²  = ((P − X)·D̂)² + |Q|² − (|Q|·(q̂·D̂))²
+    /// ```
+    ///
+    /// then `N·L` and `L·D̂` over `|P − X|`, and `h` as [`precise_h`] makes it. `σ` and
+    /// `N·V` come from [`super::roots`] (within `2⁻³⁰`), so `t` is within a few raw units,
+    /// whatever the sphere's radius: a floor's pixels under a nearby lamp need that, where the
+    /// fast Q15 forms would leave `t` off by `r·2⁻¹⁵`. No term cancels beyond the distance's
+    /// own size. Out of line: a point light's pixels take 64-bit products and two roots.
+    #[inline(never)]
+    pub(super) fn precise_light(
+        &self,
+        surface: &Surface,
+        (sphere, ns, light): (&FixedSphere, &NarrowSphere, &NarrowLight),
+        light_index: usize,
+        d: V3<i32>,
+        (g, dl): (i64, i64),
+    ) -> Option<([u32; 3], [u32; 3])> {
+        const ONE30: i64 = 1 << 30;
+        let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
+        let (ya, sa) = inv_sqrt(a)?;
+        // σ = 2²⁹/|D| in Q31, N·V and q̂·D̂ in Q30, as in `precise_h`.
+        let sigma = shift_saturating(ya as u64, 60 - sa as i32).min(1 << 31);
+        let e60 = (surface.e.max(0) as u64) << (31 - ns.e_shift.min(31));
+        let root = sqrt(e60).min(u32::MAX as u64) as u32;
+        let nv = ((mul_uu(root, sigma) >> 31) as i64).min(ONE30);
+        let qd = (mul_iu((dl >> 29) as i32, sigma) >> 31).clamp(-ONE30, ONE30);
+        let g29 = high_bits(g, ns.g_shift);
+        let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
+        let nq = ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, qd as i32) >> 30))
+            .clamp(-ONE30, ONE30);
+        let (nl, ld, arriving) = match self.lights.get(light_index)? {
+            FixedLight::Point { power, position } => {
+                let point = self.points.get(light_index)?;
+                // t, raw: on a hit b = oc·D < 0, and (−b)/2³⁰ is −oc·d/2 (below 2³¹), times σ.
+                let b = dot_ii(sphere.eye_offset.map(|c| c.to_bits()), d);
+                let along = (mul_uu(((-b).max(0) >> 30) as u32, sigma) >> 30) as i64;
+                let t = along - (mul_uu(sphere.radius.to_bits() as u32, nv as u32) >> 30) as i64;
+                // Every point lies within 2³⁰ raw of the origin per component: each length below 2³¹.
+                let q = point.distance;
+                let qq = (q * qd) >> 30;
+                let pd = qq - t;
+                let np = ((q * nq) >> 30) + ((t * nv) >> 30);
+                let perp2 = (q * q - qq * qq).max(0) as u64;
+                let dist2 = (pd * pd) as u64 + perp2;
+                let inv = inv_sqrt(dist2)?;
+                let (y, shift) = inv;
+                let over = |v: i64| {
+                    let v = v.clamp(i32::MIN as i64, i32::MAX as i64) as i32;
+                    (mul_iu(v, y) >> (shift - 30).min(63)).clamp(-ONE30, ONE30)
+                };
+                let (nl, ld) = (over(np), over(pd));
+                // The sphere's own shadow, as for a distant light (the light lies outside it).
+                if nl < 0 && (mul_ii(nl as i32, nl as i32) >> 30) as u64 > ns.shadow_limit as u64 {
+                    return None;
+                }
+                if light.casters != 0 {
+                    // The ray leaves the hit point `X = eye + t·D̂` lifted by `ε·N` (within a few raw
+                    // units, where `C + (r + ε)·N` from the Q15 normal could be `r·2⁻¹²` off) toward
+                    // the light as seen from `X`, up to `|P − X|`, as the full-width kernel's does.
+                    let blocked = self.blocked_along(surface.index, light.casters, || {
+                        let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
+                        let eps = self.epsilon.to_bits() as i64;
+                        let (mut origin, mut to_light) = ([0; 3], [0; 3]);
+                        for i in 0..3 {
+                            let unit = mul_iu(d[i], sigma) >> 30; // D̂, Q30
+                            let x = self.eye[i].to_bits() as i64
+                                + ((t.clamp(0, i32::MAX as i64) * unit) >> 30);
+                            let n = n[i].clamp(-NORMAL_LIMIT, NORMAL_LIMIT) as i64;
+                            origin[i] = (x + ((eps * n) >> 15)) as i32;
+                            // P − X is within the light's distance, below 2³¹ raw.
+                            let v = (position[i].to_bits() as i64 - x)
+                                .clamp(i32::MIN as i64, i32::MAX as i64)
+                                as i32;
+                            to_light[i] = (mul_iu(v, y) >> (shift - 30).min(63)) as i32;
+                        }
+                        (origin, to_light, sqrt(dist2) as i64)
+                    });
+                    if blocked {
+                        return None;
+                    }
+                }
+                (nl, ld, arriving(*power, inv))
+            }
+            FixedLight::Distant { .. } => {
+                // The fast path's shadow rules, on the precise `N·L`.
+                let nl15 = (nq >> 15) as i32;
+                if nl15 < 0 && (nl15 * nl15) as u32 > ns.shadow_limit {
+                    return None;
+                }
+                if light.casters != 0 && nl15 < light.ahead && (nl15 * nl15) as u32 <= light.reach {
+                    let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
+                    if self.narrow_blocked(surface.index, n, light_index, light.casters) {
+                        return None;
+                    }
+                }
+                (nq, qd, light.arriving)
+            }
+            #[allow(unreachable_patterns)]
+            _ => return None,
+        };
+        if ns.terms {
+            return Some(normalized_terms(sphere, (nl, nv, ld), arriving));
+        }
+        let nl15 = (nl >> 15) as i32;
+        let diffuse = if nl15 > 0 {
+            each3(|c| scale_q15(arriving[c], nl15))
+        } else {
+            [0; 3]
+        };
+        let lobe = match precise_h_of(sphere.blinn(), nl, nv, ld) {
+            Some(h) if (h >> 30) < ns.cutoff as u64 => {
+                narrow_lobe(u32::try_from(h >> 30).unwrap_or(u32::MAX), sphere.shininess)
+            }
+            _ => 0,
+        };
+        Some((diffuse, each3(|c| scale_q16(arriving[c], lobe))))
+    }
+}
