@@ -429,6 +429,22 @@ fn precise_h(
     d: V3<i32>,
     (g, dl): (i64, i64),
 ) -> Option<u64> {
+    let (_, nl, nv, ld) = precise_cosines(ns, e, d, (g, dl))?;
+    precise_h_of(blinn, nl, nv, ld)
+}
+
+/// The precise cosines at a narrow hit, from the exact `|D|²` (of `d`), `E′` (`e`, as the
+/// track holds it) and a light's `G` and `D·L` (`g_dl`, as the run holds them): `σ = 2²⁹/|D|`
+/// in Q31, and `N·L`, `N·V` and `L·D̂` in Q30, each within a few units of `2⁻³⁰` (`σ` and
+/// `√E′` from [`super::roots`]). `None` for `d = 0`, which a narrow frame never has. Shared
+/// by the precise lobe and `precise_light`.
+#[inline(always)]
+pub(super) fn precise_cosines(
+    ns: &NarrowSphere,
+    e: i64,
+    d: V3<i32>,
+    (g, dl): (i64, i64),
+) -> Option<(u32, i64, i64, i64)> {
     const ONE30: i64 = 1 << 30;
     let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
     let (ya, sa) = inv_sqrt(a)?;
@@ -438,14 +454,14 @@ fn precise_h(
     let e60 = (e.max(0) as u64) << (31 - ns.e_shift.min(31));
     let root = sqrt(e60).min(u32::MAX as u64) as u32;
     let nv = ((mul_uu(root, sigma) >> 31) as i64).min(ONE30);
-    // L·D̂ = (d·L)·σ, Q30: D·L is d·L in Q59, |d·L| ≤ √2.
-    let ld = mul_iu((dl >> 29) as i32, sigma) >> 31;
+    // L·D̂ = (d·L)·σ, Q30: D·L is d·L in Q59, |d·L| ≤ √2; clamped to the rounding's ±1.
+    let ld = (mul_iu((dl >> 29) as i32, sigma) >> 31).clamp(-ONE30, ONE30);
     // N·L = G·σ² − (N·V)(L·D̂): G in Q29 (|G·σ²| ≤ 2 on a hit), σ² in Q30.
     let g29 = high_bits(g, ns.g_shift); // |G| ≤ |d|² ≤ 2 on a hit, as in `fast_cosines`
     let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
     let nl =
         ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, ld as i32) >> 30)).clamp(-ONE30, ONE30);
-    precise_h_of(blinn, nl, nv, ld)
+    Some((sigma, nl, nv, ld))
 }
 
 /// The lobe's `h = 1 − cos` in U3F61 from `N·L`, `N·V` and `L·D̂` in Q30 (`None` where

@@ -10,7 +10,7 @@
 use super::exact::{arriving, shift_saturating};
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
 use super::narrow::{
-    high_bits, narrow_lobe, precise_h_of, scale_q15, scale_q16, Surface, NORMAL_LIMIT,
+    narrow_lobe, precise_cosines, precise_h_of, scale_q15, scale_q16, Surface, NORMAL_LIMIT,
 };
 use super::prepare::{FixedLight, FixedSphere, NarrowLight, NarrowSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
@@ -108,18 +108,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         (g, dl): (i64, i64),
     ) -> Option<([u32; 3], [u32; 3])> {
         const ONE30: i64 = 1 << 30;
-        let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
-        let (ya, sa) = inv_sqrt(a)?;
-        // σ = 2²⁹/|D| in Q31, N·V and q̂·D̂ in Q30, as in `precise_h`.
-        let sigma = shift_saturating(ya as u64, 60 - sa as i32).min(1 << 31);
-        let e60 = (surface.e.max(0) as u64) << (31 - ns.e_shift.min(31));
-        let root = sqrt(e60).min(u32::MAX as u64) as u32;
-        let nv = ((mul_uu(root, sigma) >> 31) as i64).min(ONE30);
-        let qd = (mul_iu((dl >> 29) as i32, sigma) >> 31).clamp(-ONE30, ONE30);
-        let g29 = high_bits(g, ns.g_shift);
-        let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
-        let nq = ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, qd as i32) >> 30))
-            .clamp(-ONE30, ONE30);
+        // N·q̂ and q̂·D̂ for a point light (its quadrics are those of the direction q̂).
+        let (sigma, nq, nv, qd) = precise_cosines(ns, surface.e, d, (g, dl))?;
         let (nl, ld, arriving) = match self.lights.get(light_index)? {
             FixedLight::Point { power, position } => {
                 let point = self.points.get(light_index)?;
