@@ -94,15 +94,25 @@ pub enum RenderError {
         light: usize,
     },
     /// The frame needs the fixed path's full-width kernel, which this build leaves out
-    /// (crate feature `full-width`): the narrow kernel takes distant lights and the classic
-    /// models only, a field of view up to about 90° on the diagonal, and spheres the camera
-    /// is clearly outside of (see [`crate::fixed`]);
+    /// (crate feature `full-width`): the narrow kernel takes distant and point lights (of
+    /// radius 0), every model but Oren–Nayar and GGX, a field of view up to about 90° on the
+    /// diagonal, and spheres the camera is clearly outside of (see [`crate::fixed`]);
     /// only [`PreparedFixed::new`](crate::PreparedFixed::new) returns it.
     NeedsFullWidth {
         /// The first item the narrow kernel does not take.
         item: Item,
         /// Its field that keeps it from the narrow kernel, as spelled in the scene file
-        /// (`type` of a point light, `model`, `vfov`, `center`, `radius`).
+        /// (`model`, `vfov`, `center`, `radius`).
+        field: &'static str,
+    },
+    /// The frame has a point light or a sphere of a normalized model, whose stages of the
+    /// fixed path's narrow kernel this build leaves out (crate feature `narrow-precise`), and
+    /// no full-width kernel either; only [`PreparedFixed::new`](crate::PreparedFixed::new)
+    /// returns it.
+    NeedsNarrowPrecise {
+        /// The first point light or normalized sphere.
+        item: Item,
+        /// `type` for a point light, `model` for a sphere.
         field: &'static str,
     },
 }
@@ -157,6 +167,12 @@ impl fmt::Display for RenderError {
                 f,
                 "{item}: `{field}` needs the fixed path's full-width kernel, which this build \
                  leaves out (crate feature `full-width`)"
+            ),
+            RenderError::NeedsNarrowPrecise { item, field } => write!(
+                f,
+                "{item}: `{field}` needs the fixed narrow kernel's point-light and \
+                 normalized-model stages, which this build leaves out (crate feature \
+                 `narrow-precise`)"
             ),
         }
     }

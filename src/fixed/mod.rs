@@ -146,9 +146,16 @@ mod exact;
 mod kernel;
 mod mul;
 mod narrow;
+mod narrow_hit;
+#[cfg(feature = "narrow-precise")]
+mod narrow_point;
+mod narrow_point_shadow;
+#[cfg(feature = "narrow-precise")]
 mod narrow_precise;
 mod narrow_prepare;
 mod narrow_shadow;
+#[cfg(feature = "narrow-precise")]
+mod narrow_terms;
 #[cfg(not(feature = "full-width"))]
 mod outline;
 mod pow;

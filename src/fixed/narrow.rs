@@ -17,9 +17,9 @@
 //! the image plane is narrow enough that every primary direction is within `√2` of the
 //! central one in length (a field of view up to about 90° on the diagonal). Every other frame
 //! renders with the full-width kernel alone. Lambert shades as a classic sphere of diffuse
-//! weight `kd·albedo/π` and no lobe; the normalized models, and every sphere of a frame with a
-//! point light, take the precise cosines (`precise_light`, below), in a pixel loop of their
-//! own (`PRECISE`), so that the other frames' loop holds none of that code. The
+//! weight `kd·albedo/π` and no lobe; the normalized models and the point lights take stages
+//! of their own (below), in a pixel loop of their own (`PRECISE`), so that the other frames'
+//! loop holds none of that code. The
 //! conditions are frame-wide, so a pixel's result does not depend on which spheres' spans
 //! cover it (turning spans off changes no pixel).
 //!
@@ -72,22 +72,28 @@
 //! which match the host's, where the test is off). Only ARMv6-M and RV32 take it
 //! (`QUICK_CASTER_TEST`).
 //!
-//! # Point lights
+//! # Point lights and the normalized models
 //!
 //! A point light at `P` is, for the quadrics, a distant light along the unit vector `q̂` from
 //! the eye toward it (`NarrowPoint`): `G` and `D·q̂` give `N·q̂` and `q̂·D̂` as above, and with
 //! `Q = P − eye` and the hit at `X = eye + t·D̂`, `N·(P − X) = |Q|·(N·q̂) + t·(N·V)` and
 //! `(P − X)·D̂ = |Q|·(q̂·D̂) − t`, so the distance, `N·L`, `L·D̂` and `1/d²` follow without a
-//! vector (`point_light`). They are taken in 30-bit fractions from the roots of
-//! [`super::roots`], as the precise lobe's are: `t` must be within a few raw units where a
-//! lamp hangs close over a floor of radius 100 or more, which the Q15 forms are not. The
-//! shadow ray starts at `X` lifted by `ε`, toward the light as seen from `X`, and counts a
-//! caster only before the light; the caster mask is the full-width kernel's
-//! (`Scene::shadow_casters`), with no filter before it.
+//! vector. [`super::narrow_point`] takes them in 15- and 16-bit fractions where their error
+//! bound lets it (nearly every pixel of an ordinary scene), and `precise_light`
+//! ([`super::narrow_precise`]) in 30-bit fractions from the roots of [`super::roots`]
+//! elsewhere. The shadow ray starts at `X` lifted by `ε`, toward the light as seen from `X`,
+//! and counts a caster only before the light; the caster mask is the full-width kernel's
+//! (`Scene::shadow_casters`), and the casters' cones and a distance test from the fast `X`
+//! ([`super::narrow_point_shadow`]) settle most pixels before the precise ray.
 //!
-//! A sphere of a normalized model shades each light with the full-width kernel's terms
-//! (`normalized_terms`: the lobes' weighted sum times `N·L`, Schlick's `F` per channel from
-//! `L·H = |L + V|/2`, the diffuse loss), from the same precise cosines.
+//! A sphere of a normalized model shades each light with the full-width kernel's terms (the
+//! lobes' weighted sum times `N·L`, Schlick's `F` per channel from `L·H = |L + V|/2`, the
+//! diffuse loss): [`super::narrow_terms`] from the fast cosines where the fast lobe serves,
+//! `normalized_terms` from the precise ones elsewhere.
+//!
+//! The shadow test toward a distant light starts with the same distance test from the fast
+//! `X` (`t = r·c/(N·V + √((N·V)² + c))`, see [`super::narrow_point`]); only the casters it
+//! cannot settle take the normal and the exact ray below.
 //!
 //! # Where the lobe needs more bits
 //!
@@ -122,6 +128,10 @@
 
 use super::exact::{shift_saturating, Exact};
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
+use super::narrow_hit::fast_t;
+#[cfg(feature = "narrow-precise")]
+use super::narrow_point::PointSeen;
+use super::narrow_point_shadow::{Casters, DISTANCE_TEST};
 use super::pow::{EXP_TABLE, INV_LN2_F31, LOG_TABLE};
 use super::prepare::{FixedLight, NarrowSphere, NarrowView, PreparedFixed};
 use super::quadric::Step;
@@ -131,7 +141,7 @@ use crate::pixel::HitRecord;
 use crate::runs::Span;
 
 /// One, Q15.
-const ONE: i32 = 1 << 15;
+pub(super) const ONE: i32 = 1 << 15;
 
 /// Bound of each component of the narrow normal (Q15) in the caster test (`narrow_blocked`),
 /// `2⁻⁸` above 1. The normal is within about `2⁻¹²` of unit length on a hit, so the clamp
@@ -343,7 +353,12 @@ fn sigma_of(a: i64) -> (i32, u32) {
 /// `N·L` and `L·D̂` (both Q15) at a pixel: `D·L` as the run holds it, `σ` (Q15), `σ²`
 /// (Q16) and `N·V` (Q15), and `G` as held with its shift.
 #[inline(always)]
-fn fast_cosines(dl: i64, (sigma, sigma2, nv): (i32, u32, i32), g: i64, g_shift: u32) -> (i32, i32) {
+pub(super) fn fast_cosines(
+    dl: i64,
+    (sigma, sigma2, nv): (i32, u32, i32),
+    g: i64,
+    g_shift: u32,
+) -> (i32, i32) {
     // L·D̂ = (d·L)·σ, Q15: the high word of D·L is d·L in Q27, |d·L| ≤ |d| ≤ √2.
     let ld = ((((dl >> 32) as i32) >> 12) * sigma) >> 15;
     // G (Q29: |G| ≤ |d|² on a hit) times σ², then N·L = G·σ² − (N·V)(L·D̂), Q15.
@@ -363,7 +378,7 @@ const BLINN_LEN2_MIN: u32 = 9 << 26;
 /// [`H_ERROR`](super::prepare::H_ERROR): not for Blinn-Phong where `|L + V|² < 9/16`, where the `h`
 /// given is 0 if the lobe can be anything but 0 (`N·H > 0`), so that the precise lobe decides.
 #[inline(always)]
-fn fast_h(blinn: bool, nl: i32, nv: i32, ld: i32) -> (u32, bool) {
+pub(super) fn fast_h(blinn: bool, nl: i32, nv: i32, ld: i32) -> (u32, bool) {
     // h in Q29 (|h| < 2 here).
     let h29 = if blinn {
         // N·H = (N·L + N·V)/|L + V| with |L + V|² = 2 − 2·L·D̂ (V = −D̂).
@@ -451,13 +466,13 @@ pub(super) fn precise_cosines(
     // σ = 2²⁹/|D| in Q31: ya·2^(60 − sa), at most 2³¹.
     let sigma = shift_saturating(ya as u64, 60 - sa as i32).min(1 << 31);
     // √E′ in Q30 from E′ in Q60 (E′ ≤ 2, so below 2⁶¹), and N·V = √E′·σ, Q30.
-    let e60 = (e.max(0) as u64) << (31 - ns.e_shift.min(31));
+    let e60 = (e.max(0) as u64) << (31 - (ns.e_shift as u32).min(31));
     let root = sqrt(e60).min(u32::MAX as u64) as u32;
     let nv = ((mul_uu(root, sigma) >> 31) as i64).min(ONE30);
     // L·D̂ = (d·L)·σ, Q30: D·L is d·L in Q59, |d·L| ≤ √2; clamped to the rounding's ±1.
     let ld = (mul_iu((dl >> 29) as i32, sigma) >> 31).clamp(-ONE30, ONE30);
     // N·L = G·σ² − (N·V)(L·D̂): G in Q29 (|G·σ²| ≤ 2 on a hit), σ² in Q30.
-    let g29 = high_bits(g, ns.g_shift); // |G| ≤ |d|² ≤ 2 on a hit, as in `fast_cosines`
+    let g29 = high_bits(g, ns.g_shift as u32); // |G| ≤ |d|² ≤ 2 on a hit, as in `fast_cosines`
     let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
     let nl =
         ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, ld as i32) >> 30)).clamp(-ONE30, ONE30);
@@ -503,7 +518,7 @@ fn first<const L: usize>(states: &mut [Step; L], lights: usize) -> &mut [Step] {
 /// otherwise where `h ≤ ½` and the lobe is at most `fast_lobe_max`; `None` where the
 /// precise lobe must decide.
 #[inline(always)]
-fn fast_lobe(ns: &NarrowSphere, n: Exact, h: u32, trusted: bool) -> Option<u32> {
+pub(super) fn fast_lobe(ns: &NarrowSphere, n: Exact, h: u32, trusted: bool) -> Option<u32> {
     if !trusted || ns.fast_lobe_max == 0 {
         return None;
     }
@@ -588,7 +603,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 index,
                 span,
                 e: n.e.step_at_cell(y_offset, x_offset),
-                e_shift: n.e_shift,
+                e_shift: (n.e_shift as u32),
                 g,
             };
             // As many tracks as spheres: cannot fail.
@@ -801,31 +816,58 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let (light, g, dl) = (&lights[light_index], &g[light_index], &dl[light_index]);
             // Only in the frames with a point light or a normalized sphere: the others' loop
             // holds none of this (their registers are the fast path's).
-            let point =
-                PRECISE && matches!(self.lights.get(light_index), Some(FixedLight::Point { .. }));
-            if PRECISE && (point || ns.terms) {
-                let seen =
-                    self.precise_light(surface, (sphere, ns, light), light_index, d, (g.v, dl.v));
-                let Some((dif, spec)) = seen else {
-                    if record_hits && light_index < 32 {
-                        shadowed |= 1 << light_index;
+            #[cfg(feature = "narrow-precise")]
+            if PRECISE {
+                let point = matches!(self.lights.get(light_index), Some(FixedLight::Point { .. }));
+                if point || ns.terms {
+                    let seen = self.point_or_terms_light(
+                        surface,
+                        (sphere, ns, light),
+                        (light_index, point),
+                        d,
+                        (g.v, dl.v),
+                    );
+                    match seen {
+                        PointSeen::Lit(dif, spec) => {
+                            diffuse = each3(|c| diffuse[c].saturating_add(dif[c]));
+                            specular = each3(|c| specular[c].saturating_add(spec[c]));
+                            (lit, glossy) = (true, true);
+                        }
+                        _ => {
+                            if record_hits && light_index < 32 {
+                                shadowed |= 1 << light_index;
+                            }
+                        }
                     }
                     continue;
-                };
-                diffuse = each3(|c| diffuse[c].saturating_add(dif[c]));
-                specular = each3(|c| specular[c].saturating_add(spec[c]));
-                (lit, glossy) = (true, true);
-                continue;
+                }
             }
-            let (nl, ld) = fast_cosines(dl.v, (sigma, sigma2, nv), g.v, ns.g_shift);
+            let (nl, ld) = fast_cosines(dl.v, (sigma, sigma2, nv), g.v, ns.g_shift as u32);
             let mut blocked = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
             if !blocked && light.casters != 0 && nl < light.ahead && (nl * nl) as u32 <= light.reach
             {
-                let n = match normal {
-                    Some(n) => n,
-                    None => *normal.insert(self.narrow_normal(sphere, ns, d, sigma, nv)),
+                let got = if DISTANCE_TEST {
+                    self.distant_casters(light_index, light.casters, (fast_t(ns, nv), d, sigma))
+                } else {
+                    Casters::Left(light.casters)
                 };
-                blocked = self.narrow_blocked(index, n, light_index, light.casters);
+                blocked = match got {
+                    Casters::Blocked => true,
+                    Casters::Left(0) => false,
+                    Casters::Left(left) => {
+                        let n = match normal {
+                            Some(n) => n,
+                            None => *normal.insert(self.narrow_normal(sphere, ns, d, sigma, nv)),
+                        };
+                        self.narrow_blocked(index, n, light_index, left)
+                    }
+                };
+                #[cfg(test)]
+                {
+                    let n = self.narrow_normal(sphere, ns, d, sigma, nv);
+                    let exact = self.narrow_blocked(index, n, light_index, light.casters);
+                    assert_eq!(blocked, exact, "the distance test disagrees with the ray");
+                }
             }
             if blocked {
                 if record_hits && light_index < 32 {
@@ -833,7 +875,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 }
                 continue;
             }
-            let arriving = light.arriving;
+            let arriving = match self.lights.get(light_index) {
+                Some(FixedLight::Distant { arriving, .. }) => arriving.map(|c| c.to_bits()),
+                _ => [0; 3],
+            };
             if nl > 0 {
                 diffuse = each3(|c| diffuse[c].saturating_add(scale_q15(arriving[c], nl)));
                 lit = true;
@@ -951,7 +996,7 @@ const fn sqrt_table() -> [u32; 257] {
 /// from two places, and one copy is smaller there at no more instructions per frame.
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 #[cfg_attr(shadeline_short_mul, inline(never))]
-fn sqrt_q30(x: u32) -> i32 {
+pub(super) fn sqrt_q30(x: u32) -> i32 {
     if x == 0 {
         return 0;
     }
@@ -1140,7 +1185,7 @@ pub(super) fn narrow_lobe(h: u32, n: Exact) -> u32 {
 }
 
 #[cfg(test)]
-mod tests {
+pub(super) mod tests {
     use super::*;
     use crate::test_scenes::uniform;
 
@@ -1178,15 +1223,15 @@ mod tests {
     use std::vec::Vec;
 
     /// A narrow surface with what the light stage reads: the direction and each light's `G`.
-    struct Seen {
-        surface: Surface,
-        d: V3<i32>,
-        g: [Step; 8],
-        dl: [Step; 8],
+    pub(crate) struct Seen {
+        pub surface: Surface,
+        pub d: V3<i32>,
+        pub g: [Step; 8],
+        pub dl: [Step; 8],
     }
 
     /// Every narrow surface of `frame`, through the general (several-track) path.
-    fn surfaces(frame: &PreparedFixed<16, 8>) -> Vec<Seen> {
+    pub(crate) fn surfaces(frame: &PreparedFixed<16, 8>) -> Vec<Seen> {
         let mut out = Vec::new();
         for y in 0..frame.height {
             let spans = frame.row_spans(y);
@@ -1288,8 +1333,12 @@ mod tests {
                 let sphere = &frame.spheres[index];
                 let ns = sphere.narrow.as_ref().unwrap();
                 for (k, &(nl_x, nv_x, ld_x)) in exact.iter().enumerate() {
-                    let (nl, ld) =
-                        fast_cosines(seen.dl[k].v, (sigma, sigma2, nv), seen.g[k].v, ns.g_shift);
+                    let (nl, ld) = fast_cosines(
+                        seen.dl[k].v,
+                        (sigma, sigma2, nv),
+                        seen.g[k].v,
+                        ns.g_shift as u32,
+                    );
                     worst_nl = worst_nl.max((nl as f64 / 32768.0 - nl_x).abs());
                     let h_x = if sphere.blinn {
                         let len = (2.0 - 2.0 * ld_x).sqrt();
@@ -1481,8 +1530,12 @@ mod tests {
                 } = seen.surface;
                 let sphere = &frame.spheres[index];
                 let ns = sphere.narrow.as_ref().unwrap();
-                let (nl, ld) =
-                    fast_cosines(seen.dl[0].v, (sigma, sigma2, nv), seen.g[0].v, ns.g_shift);
+                let (nl, ld) = fast_cosines(
+                    seen.dl[0].v,
+                    (sigma, sigma2, nv),
+                    seen.g[0].v,
+                    ns.g_shift as u32,
+                );
                 let (h, trusted) = fast_h(sphere.blinn, nl, nv, ld);
                 h < ns.cutoff && fast_lobe(ns, sphere.shininess, h, trusted).is_none()
             })

@@ -6,8 +6,10 @@
 //! its scaled integers.
 
 use super::convert::to_f32;
-use super::exact::arriving;
+use super::exact::{arriving, Exact};
 use super::mul::{dot_ii, mul_128, mul_ii, mul_iu, mul_uu};
+#[cfg(feature = "narrow-precise")]
+use super::narrow_point::{point_error, CONE_MARGIN};
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::prepare::{
@@ -59,6 +61,40 @@ fn lobe_cutoff(ks_intensity: f32, n: f32) -> u32 {
         1.0
     } + 2.0 * H_ERROR;
     (h * (1u64 << 31) as f32) as u32
+}
+
+/// The largest fast lobe (U1F16) within half a level where `h ≤ ½`, for a lobe of exponent
+/// `n` times `ks_intensity` whose `h` is within `h_error`: `2¹⁶` or more if it is wherever
+/// the lobe is not 0, 0 if nowhere. The lobe's error is its slope `n·(1 − h)^(n − 1)`
+/// times `h`'s error, and the narrow `pow`'s own (module `narrow`); the slope is at most `n`
+/// (at `h = 0`), and at most `2n` times the lobe where `h ≤ ½`. Above `n = 256`, the range
+/// the `pow`'s bound of `1.4·10⁻⁴` is held on, 0.
+fn fast_lobe_max(ks_intensity: f32, n: f32, h_error: f32) -> u32 {
+    let budget = 0.5 / (ks_intensity * 255.0) - 1.4e-4;
+    if n > 256.0 || budget.is_nan() || budget <= 0.0 {
+        0
+    } else if n * h_error <= budget {
+        u32::MAX
+    } else {
+        ((budget / (2.0 * n * h_error)) * 65536.0) as u32
+    }
+}
+
+/// A normalized sphere's lobes: the sum of their weights (each `wₖ` times its normalization,
+/// as `FixedSphere::weight` holds it), and the least and largest exponent of a lobe of
+/// nonzero weight (`n` is lobe 0's).
+#[inline(never)]
+fn lobe_range(sphere: &FixedSphere, n: f32) -> (f32, f32, f32) {
+    let value = |e: Exact| libm::ldexpf(e.mantissa as f32, e.exponent);
+    let (mut sum, mut low, mut high) = (value(sphere.weight[0]), n, n);
+    for (w, e) in sphere.weight[1..].iter().zip(sphere.more_shininess) {
+        if w.mantissa != 0 {
+            sum += value(*w);
+            low = low.min(value(e));
+            high = high.max(value(e));
+        }
+    }
+    (sum, low, high)
 }
 
 /// The index pairs `(a, b)` of a quadric's coefficients in the order of [`Quadric::c`]:
@@ -344,32 +380,57 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         let bits = 64 - r.leading_zeros();
         let (rf, ef) = (r as f32, eps as f32);
-        let ks_intensity = to_f32(ks.to_bits() as i64, 16) * intensity;
-        let cutoff = lobe_cutoff(ks_intensity, n);
-        // The fast lobe's error, in levels of the brightest channel: its slope
-        // n·(1 − h)^(n − 1) times h's error, and the narrow `pow`'s own (module `narrow`).
-        // The slope is at most n (at h = 0), and at most 2n times the lobe where h ≤ ½.
-        // Above n = 256, the range the `pow`'s bound of 1.4·10⁻⁴ is held on, every pixel
-        // below the cutoff takes the precise lobe.
-        let budget = 0.5 / (ks_intensity * 255.0) - 1.4e-4;
-        let fast_lobe_max = if n > 256.0 || budget.is_nan() || budget <= 0.0 {
-            0
-        } else if n * H_ERROR <= budget {
-            u32::MAX
+        // The lobes' scale and exponents: `ks` and `n` for the classic models; for the
+        // normalized ones the sum of the lobes' weights (F ≤ 1), the least exponent for the
+        // cutoff (the widest lobe) and the largest for the error (the steepest).
+        let (scale, n_low, n_high) = if terms {
+            lobe_range(s, n)
         } else {
-            ((budget / (2.0 * n * H_ERROR)) * 65536.0) as u32
+            (to_f32(ks.to_bits() as i64, 16), n, n)
         };
+        let ks_intensity = scale * intensity;
+        let cutoff = lobe_cutoff(ks_intensity, n_low);
+        // The fast lobe's error (see `fast_lobe_max`). For the normalized models a limit of
+        // at least one step: where lobe 0 is below it, so is every lobe of a larger exponent,
+        // and whatever the exponent its error is far below a level.
+        let fast_lobe_max = match fast_lobe_max(ks_intensity, n_high, H_ERROR) {
+            0 if terms => 1,
+            max => max,
+        };
+        // c = |ô|² − 1 = (|oc|² − r²)/r², from the exact difference.
+        let c = (oc_len2 - r2) as f32 / r2 as f32;
+        let mut c_shift = 0u8;
+        while c_shift < 15 && 1.0 + c > (1u64 << (2 * c_shift)) as f32 {
+            c_shift += 1;
+        }
+        let t_num = Exact::from_f32((oc_len2 - r2) as f32 / r as f32);
+        #[cfg(feature = "narrow-precise")]
+        for light_index in 0..self.lights.len().min(L) {
+            let (fast, ratio, slack) = self.point_fast(i, light_index, (n_high, scale));
+            if let Some(l) = self
+                .narrow_lights
+                .get_mut(i)
+                .and_then(|l| l.get_mut(light_index))
+            {
+                (l.point_fast, l.point_ratio, l.point_slack) = (fast, ratio, slack);
+            }
+        }
         let narrow = NarrowSphere {
+            c_q30: (c * (1u64 << (30 - 2 * c_shift)) as f32).min((1u32 << 30) as f32) as u32,
+            c_shift,
+            t_mantissa: (t_num.mantissa >> 8) as u16,
+            // r·c is at least ε (1 raw unit) and below 2⁶²: an exponent in −15..=47.
+            t_exponent: (t_num.exponent + 8).clamp(-128, 127) as i8,
             quick_margin: self.quick_margin(i),
             touching: self.touching(i),
             fast_lobe_max,
             terms,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
                 as u32,
-            cutoff: if terms { u32::MAX } else { cutoff },
-            e_shift,
-            g_shift,
-            cross_shift: bits + 14,
+            cutoff,
+            e_shift: e_shift as u8,
+            g_shift: g_shift as u8,
+            cross_shift: (bits + 14) as u8,
             gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
             b_rises: b[1] > 0,
             #[cfg(not(feature = "full-width"))]
@@ -425,6 +486,93 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         (16 + ((omega >> shift) >> 11) + ((2 * root) >> shift) + 1).min(i32::MAX as u64) as i32
     }
 
+    /// [`NarrowLight::cone`] of sphere `own` for the point light at `position`: the unit
+    /// vector from the light toward the centre and the cosine of the cone's half-angle,
+    /// `√(1 − (ρ/|C − P|)²)` with `ρ` the radius widened by `2ε`, a raw unit and `2⁻¹²`,
+    /// lowered by [`CONE_MARGIN`]; every point passes where the light is within `ρ` of the
+    /// centre (inside or at the sphere). In `f32`: the margin covers its rounding many times.
+    #[cfg(feature = "narrow-precise")]
+    #[inline(never)]
+    fn point_cone(&self, own: &FixedSphere, position: &V3<super::vector::Len>) -> [i16; 4] {
+        let v = each3(|k| (own.center[k].to_bits() as i64 - position[k].to_bits() as i64) as f32);
+        let len = libm::sqrtf(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        let rho = own.radius.to_bits() as f32 * (1.0 + 1.0 / 4096.0)
+            + 2.0 * self.epsilon.to_bits() as f32
+            + 1.0;
+        if len.is_nan() || len <= rho {
+            return [0, 0, 0, i16::MIN];
+        }
+        let ratio = rho / len;
+        let cos = libm::sqrtf(1.0 - ratio * ratio) - CONE_MARGIN;
+        let q15 = |x: f32| libm::roundf(x * 32768.0).clamp(-32768.0, 32767.0) as i16;
+        [
+            q15(v[0] / len),
+            q15(v[1] / len),
+            q15(v[2] / len),
+            libm::floorf(cos * 32768.0).clamp(-32768.0, 32767.0) as i16,
+        ]
+    }
+
+    /// [`NarrowLight::point_fast`] and [`NarrowLight::point_ratio`] of sphere `i` for light
+    /// `light` (0 unless it is a point light), from the sphere's largest exponent `n` and
+    /// its lobes' `scale` (`ks`, or the normalized models' sum of weights). With `F` the
+    /// factor of [`point_error`] (`(1 + |Q|/g)²`), the cosines are within `4F` steps of
+    /// `2⁻¹⁵` and the arriving light within `16F` relative (`1/d²` from `1/d`): at the
+    /// brightest light arriving on the sphere (its power over the square of its distance
+    /// from the surface) the diffuse term's error is at most one level (its bound; the errors measured are far below) where
+    /// `F ≤ F_d`, and the cosines are within `2⁻⁹` (which the cones' `CONE_MARGIN` allows
+    /// for) where `F ≤ 16`. The ratio is `(√F − 1)²` for the least of these (every pixel if
+    /// the sphere's own factor, at its nearest point to the light, is below it; none if it
+    /// is below 1), the lobe's limit that of `fast_lobe_max` with `h`'s error three times
+    /// the cosines' at that `F` and the fast `h`'s own ([`H_ERROR`]), and the slack of the
+    /// shadow filters twice the cosines' bound.
+    #[cfg(feature = "narrow-precise")]
+    #[inline(never)]
+    fn point_fast(&self, i: usize, light: usize, (n, scale): (f32, f32)) -> (u16, u8, u8) {
+        let (Some(own), Some(FixedLight::Point { position, power }), Some(point)) = (
+            self.spheres.get(i),
+            self.lights.get(light),
+            self.points.get(light),
+        ) else {
+            return (0, 0, 0);
+        };
+        let w = each3(|k| position[k].to_bits() as i64 - own.center[k].to_bits() as i64);
+        let len2 = w.iter().map(|&v| (v * v) as u64).sum::<u64>();
+        let gap = (sqrt(len2) as i64 - own.radius.to_bits() as i64 - 2).max(1) as u64;
+        let brightest = inv_sqrt(gap * gap).map_or(u32::MAX, |inv| {
+            arriving(*power, inv).into_iter().max().unwrap_or(0)
+        });
+        let brightest = to_f32(brightest as i64, 16);
+        let kd = own
+            .kd_albedo
+            .iter()
+            .map(|k| k.to_num::<f32>())
+            .fold(0.0, f32::max);
+        let unit = point_error(0.0, 1.0); // the error at F = 1
+        let diffuse = 1.0 / (255.0 * brightest * kd * 5.0 * unit);
+        let limit = if diffuse.is_nan() {
+            0.0
+        } else {
+            diffuse.min(16.0)
+        };
+        let own_factor = point_error(point.distance as f32, gap as f32) / unit;
+        if limit.is_nan() || limit < 1.0 {
+            return (0, 0, 0);
+        }
+        let (factor, ratio) = if own_factor <= limit {
+            // |Q|/g ≤ 3 here: a ratio of 9 (144 in Q4) passes every pixel.
+            (own_factor, 255)
+        } else {
+            let root = libm::sqrtf(limit) - 1.0;
+            (limit, (root * root * 16.0) as u8)
+        };
+        let h_error = 3.0 * unit * factor + H_ERROR;
+        // The direction's error, for the shadow filters: twice the cosines' bound, and 4 steps.
+        let slack = (2.0 * unit * factor * 32768.0) as u8 + 4;
+        let lobe = fast_lobe_max(scale * brightest, n, h_error).clamp(1, u16::MAX as u32);
+        (lobe as u16, ratio, slack)
+    }
+
     /// The spheres whose surface comes within `4ε` of sphere `i`'s (bit `k` for sphere `k`,
     /// the first 32), from the exact squared distance of the centres.
     fn touching(&self, i: usize) -> u32 {
@@ -464,13 +612,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(own) = self.spheres.get(i) else {
             return Err("center");
         };
-        let (l, arriving) = match self.lights.get(light) {
-            Some(FixedLight::Distant { to_light, arriving }) => {
-                (to_light.map(|c| c.to_bits()), arriving.map(|c| c.to_bits()))
-            }
-            Some(FixedLight::Point { .. }) => {
-                (self.points.get(light).map_or([0; 3], |p| p.dir), [0; 3])
-            }
+        let l = match self.lights.get(light) {
+            Some(FixedLight::Distant { to_light, .. }) => to_light.map(|c| c.to_bits()),
+            Some(FixedLight::Point { .. }) => self.points.get(light).map_or([0; 3], |p| p.dir),
             _ => return Err("radius"),
         };
         let scene_light = match self.lights.get(light) {
@@ -495,13 +639,25 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 ((dot_ii(c, u.map(i32::from)) + (1 << (shift - 1))) >> shift) as i32
             })
         });
+        #[cfg(feature = "narrow-precise")]
+        let cone = match self.lights.get(light) {
+            Some(FixedLight::Point { position, .. }) => self.point_cone(own, position),
+            _ => [0, 0, 0, i16::MIN],
+        };
         Ok(NarrowLight {
             g,
-            arriving,
             casters,
             ahead,
             reach,
             across,
+            #[cfg(feature = "narrow-precise")]
+            point_fast: 0,
+            #[cfg(feature = "narrow-precise")]
+            point_ratio: 0,
+            #[cfg(feature = "narrow-precise")]
+            point_slack: 0,
+            #[cfg(feature = "narrow-precise")]
+            cone,
         })
     }
 
@@ -523,7 +679,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             });
             *point = NarrowPoint {
                 dir,
-                distance: sqrt(len2) as i64,
+                #[cfg(feature = "narrow-precise")]
+                distance: sqrt(len2).min(i32::MAX as u64) as u32,
             };
         }
     }

@@ -34,7 +34,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // |D| ≤ √2·2²⁹ in a narrow frame: below √2·2¹⁵ after the shift, so `c·mu` below
         // (mu ≤ 2¹⁵) fits an `i32`.
         let high = w.map(|c| {
-            let high = c >> ns.cross_shift.min(63);
+            let high = c >> (ns.cross_shift as u32).min(63);
             debug_assert!(high.unsigned_abs() < 46_400, "|oc × D| above r·|D|: {high}");
             high as i32
         });

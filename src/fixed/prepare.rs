@@ -84,19 +84,31 @@ pub(crate) struct NarrowSphere {
     pub shadow_limit: u32,
     /// `h` (Q31) from which the lobe is 0.
     pub cutoff: u32,
-    /// See the type's docs.
-    pub e_shift: u32,
-    pub g_shift: u32,
-    /// `N` from `oc × D` (on demand, for caster tests): that product's bits from this one
-    /// on, `(oc × D) >> cross_shift`, are below `2¹⁶` on a hit; with `gain = 2^(L + 15)/r`
-    /// (`L` the raw radius's bit length, `cross_shift = L + 14`).
-    pub cross_shift: u32,
+    /// `N` from `oc × D` (on demand, for caster tests): that product's bits from
+    /// `cross_shift` on, `(oc × D) >> cross_shift`, are below `2¹⁶` on a hit; with
+    /// `gain = 2^(L + 15)/r` (`L` the raw radius's bit length, `cross_shift = L + 14`).
     pub gain: u32,
+    /// `c = |ô|² − 1` for the fast `t` (`narrow_hit`): `c·2^(30 − 2·c_shift)` with
+    /// `c_shift` the least that makes `1 + c` at most `4^c_shift`, so that
+    /// `((N·V)² + c)·2^(−2·c_shift)` is at most 1 in Q30.
+    pub c_q30: u32,
+    /// `r·c` (raw) as a 16-bit mantissa and a power of two (`t_exponent`):
+    /// `t = r·c/(N·V + √((N·V)² + c))`.
+    pub t_mantissa: u16,
+    /// See the type's docs.
+    pub e_shift: u8,
+    pub g_shift: u8,
+    /// See `gain`.
+    pub cross_shift: u8,
     /// Whether `b = oc·D` grows along a row (`oc·step_x > 0`).
     pub b_rises: bool,
     /// A normalized model (not Lambert): every light is shaded with the full-width
-    /// kernel's normalized terms from the narrow kernel's precise cosines (`precise_light`).
+    /// kernel's normalized terms (`narrow_terms`, `normalized_terms`).
     pub terms: bool,
+    /// See `c_q30`.
+    pub c_shift: u8,
+    /// See `t_mantissa`.
+    pub t_exponent: i8,
     /// `E′`, see above.
     pub e: Quadric,
     /// The rows and the columns on which `E′` can be at least 0, each `[start, end)` (see
@@ -124,13 +136,13 @@ pub(crate) struct NarrowSphere {
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NarrowPoint {
     pub dir: [i32; 3],
-    pub distance: i64,
+    #[cfg(feature = "narrow-precise")]
+    pub distance: u32,
 }
 
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
 /// front of the caster tests. For a point light, `G` is that of the direction from the eye
-/// toward it ([`NarrowPoint`]), `arriving` is unused (it falls with distance), and the
-/// filter passes every pixel to the caster tests.
+/// toward it ([`NarrowPoint`]), and the filter passes every pixel to the caster tests.
 ///
 /// The filter holds for the lifted origin `O = C + (r + ε)·N` of any caster `k` of the
 /// sphere: the shadow ray can meet the caster only if `O` is behind it along `L`
@@ -142,8 +154,6 @@ pub(crate) struct NarrowPoint {
 #[derive(Clone, Copy, Debug, Default)]
 pub(crate) struct NarrowLight {
     pub g: Quadric,
-    /// The light's arriving colour (U16F16 bits).
-    pub arriving: [u32; 3],
     /// The spheres that can shadow the sphere from this light (bit `k` for sphere `k`, see
     /// `PreparedFixed::narrow_casters`).
     pub casters: u32,
@@ -155,6 +165,25 @@ pub(crate) struct NarrowLight {
     /// units ([`PreparedFixed::quick_shift`]), `u` and `v` the light's
     /// [`PreparedFixed::across`]: the quick caster test's constants.
     pub across: [i32; 2],
+    /// For a point light, where the fast point light (`narrow_point`) shades this sphere:
+    /// 0 nowhere; otherwise the fast lobe's limit, as `NarrowSphere::fast_lobe_max` is for
+    /// the distant lights (`u16::MAX`: wherever the lobe is not 0).
+    #[cfg(feature = "narrow-precise")]
+    pub point_fast: u16,
+    /// For a point light, the largest `(|Q|/|P − X|)²` (Q4) at which the fast point light
+    /// serves on this sphere (see `narrow_point`), at most 255.
+    #[cfg(feature = "narrow-precise")]
+    pub point_ratio: u8,
+    /// For a point light, the bound (Q15) of the error of the fast direction toward it on
+    /// this sphere, for the shadow filters' margins (`narrow_point_shadow`).
+    #[cfg(feature = "narrow-precise")]
+    pub point_slack: u8,
+    /// For a point light, this sphere as a caster: the unit vector from the light toward its
+    /// centre (Q15) and the cosine (Q15, lowered by a margin) of the cone from the light that
+    /// holds it. A shadow ray toward the light meets the sphere only from a point in that
+    /// cone (`narrow_point`'s filter). A threshold of `i16::MIN` passes every point.
+    #[cfg(feature = "narrow-precise")]
+    pub cone: [i16; 4],
 }
 
 /// A sphere's per-frame constants, in scaled units.
@@ -474,6 +503,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         across: [[[0; 3]; 2]; L],
         points: [NarrowPoint {
             dir: [0; 3],
+            #[cfg(feature = "narrow-precise")]
             distance: 0,
         }; L],
         precise_pixels: false,
@@ -792,6 +822,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         scene: &Scene<S, L>,
         corners: bool,
     ) -> Result<(), RenderError> {
+        // Without `narrow-precise` the narrow kernel has no stages for point lights and the
+        // normalized models: such a frame takes the full-width kernel, or is refused.
+        #[cfg(not(feature = "narrow-precise"))]
+        if let Some((item, field)) = needs_precise_stages(scene) {
+            #[cfg(not(feature = "full-width"))]
+            return Err(RenderError::NeedsNarrowPrecise { item, field });
+            #[cfg(feature = "full-width")]
+            {
+                self.kernel = Kernel::General { item, field };
+                return Ok(());
+            }
+        }
         let narrow = self.prepare_narrow(scene, corners);
         #[cfg(not(feature = "full-width"))]
         if let Err((item, field)) = narrow {
@@ -980,4 +1022,30 @@ mod tests {
             "{taken} frames taken, {near} near the limit"
         );
     }
+}
+
+/// The first point light (`type`) or sphere of a normalized model (`model`) of `scene`: what
+/// the narrow kernel takes only with the feature `narrow-precise`.
+#[cfg(not(feature = "narrow-precise"))]
+fn needs_precise_stages<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+) -> Option<(Item, &'static str)> {
+    use crate::scene::Model;
+    if let Some(i) = scene
+        .lights()
+        .iter()
+        .position(|l| matches!(l, Light::Point { .. }))
+    {
+        return Some((Item::Light(i), "type"));
+    }
+    scene
+        .spheres()
+        .iter()
+        .position(|s| {
+            !matches!(
+                s.material.model,
+                Model::Phong | Model::BlinnPhong | Model::Lambert
+            )
+        })
+        .map(|i| (Item::Sphere(i), "model"))
 }

@@ -169,12 +169,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // dearer: its eight registers were allocated worse.
         // A frame with a point light or a normalized sphere (`precise_pixels`) takes a loop
         // of its own, so that the others' loops carry none of the precise cosines' code.
+        // Without `narrow-precise` the prepare refuses such frames: no such loop.
         let one = cfg!(not(shadeline_short_mul)) && (L == 1 || self.lights.len() == 1);
-        if self.precise_pixels && one {
-            self.narrow_loop::<1, P, true>(narrow, start, run_pixels, &finish);
-        } else if self.precise_pixels {
-            self.narrow_loop::<0, P, true>(narrow, start, run_pixels, &finish);
-        } else if one {
+        #[cfg(feature = "narrow-precise")]
+        if self.precise_pixels {
+            if one {
+                self.narrow_loop::<1, P, true>(narrow, start, run_pixels, &finish);
+            } else {
+                self.narrow_loop::<0, P, true>(narrow, start, run_pixels, &finish);
+            }
+            return true;
+        }
+        if one {
             self.narrow_loop::<1, P, false>(narrow, start, run_pixels, &finish);
         } else {
             self.narrow_loop::<0, P, false>(narrow, start, run_pixels, &finish);
