@@ -147,12 +147,15 @@ mod kernel;
 mod mul;
 mod narrow;
 mod narrow_hit;
+mod narrow_lobe;
 #[cfg(feature = "narrow-precise")]
 mod narrow_point;
 mod narrow_point_shadow;
 #[cfg(feature = "narrow-precise")]
 mod narrow_precise;
 mod narrow_prepare;
+mod narrow_roots;
+mod narrow_scale;
 mod narrow_shadow;
 #[cfg(feature = "narrow-precise")]
 mod narrow_terms;

@@ -49,7 +49,7 @@
 //!
 //! since `N = D̂ × u − (N·V)·D̂` with `u = (ô × D̂)`. No vector is formed: per pixel and light
 //! that is a handful of `MULS`, per pixel one table-and-interpolation square root
-//! ([`SQRT_TABLE`]) and the `σ` lookup shared by every light, and `E′` keeps its
+//! (`narrow_roots`'s `SQRT_TABLE`) and the `σ` lookup shared by every light, and `E′` keeps its
 //! precision up to the silhouette, where `N·V → 0` (the closest-approach form has no
 //! cancellation: `|ô × d|² ≤ |d|²` on the sphere). The normal itself is formed only where a
 //! shadow ray must be tested against another sphere (`narrow_normal`).
@@ -126,22 +126,16 @@
 //! 16×16→32 bits (`|x| ≤ 2¹⁶` operands) except in the row's set-up, the precise lobe, the
 //! normal for caster tests and the per-channel scaling by the light's colour.
 
-use super::exact::{shift_saturating, Exact};
-use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
+use super::mul::{dot_ii, mul_uu};
 use super::narrow_hit::fast_t;
-#[cfg(feature = "narrow-precise")]
-use super::narrow_point::PointSeen;
-use super::narrow_point_shadow::{Casters, DISTANCE_TEST};
-use super::pow::{EXP_TABLE, INV_LN2_F31, LOG_TABLE};
-use super::prepare::{FixedLight, NarrowSphere, NarrowView, PreparedFixed};
+use super::narrow_lobe::{fast_h, fast_lobe, precise_lobe};
+use super::narrow_roots::{sigma_of, sqrt_q30};
+use super::narrow_scale::{high_bits, mul_u16f16, scale_q15, scale_q16, scale_signed_q16, ONE};
+use super::prepare::{FixedLight, NarrowView, PreparedFixed};
 use super::quadric::Step;
-use super::roots::{inv_sqrt, sqrt};
 use super::vector::{each3, V3};
 use crate::pixel::HitRecord;
 use crate::runs::Span;
-
-/// One, Q15.
-pub(super) const ONE: i32 = 1 << 15;
 
 /// Bound of each component of the narrow normal (Q15) in the caster test (`narrow_blocked`),
 /// `2⁻⁸` above 1. The normal is within about `2⁻¹²` of unit length on a hit, so the clamp
@@ -165,6 +159,34 @@ pub(crate) enum Narrow {
     /// The full-width kernel must shade this pixel (only for data the prepare did not set
     /// up, which a narrow frame does not have).
     Precise,
+}
+
+/// What the fast point light made of a light at a pixel.
+#[cfg(feature = "narrow-precise")]
+pub(crate) enum PointSeen {
+    /// The light's diffuse and specular sums (U16F16 per channel, before `kd·albedo` and
+    /// `ks`).
+    Lit([u32; 3], [u32; 3]),
+    /// The sphere's own shadow.
+    Blocked,
+    /// The light needs the precise path at this pixel (`precise_light`).
+    Precise,
+}
+
+/// Whether the shadow test toward a distant light starts with the distance test from the
+/// fast `X` (`PreparedFixed::distant_casters`): on ARMv6-M, where it spares most pixels the
+/// normal's six 32×32→64-bit products (calls there) and shortens the exponent series' frame
+/// and the floor's; on cores with a widening multiply the normal and the exact ray cost less
+/// than the test (`docs/performance.md`, "Choices measured"). The crate's own tests turn it
+/// on everywhere, and hold it to the exact ray's decisions.
+pub(crate) const DISTANCE_TEST: bool = cfg!(any(shadeline_short_mul, test));
+
+/// What the shadow filters found for a point light at a pixel.
+pub(crate) enum Casters {
+    /// A caster blocks the ray.
+    Blocked,
+    /// The casters that only the precise ray can decide (a mask, bit `k` for sphere `k`).
+    Left(u32),
 }
 
 /// One sphere along a run: its quadrics at the run's current column, once its span has
@@ -313,43 +335,6 @@ pub(super) struct Surface {
     pub sigma2: u32,
 }
 
-/// Bins of [`SIGMA_TABLE`] per unit of `|d|²`.
-const SIGMA_BINS: u32 = 256;
-
-/// `σ = 1/√A` for `A = 1 + i/256`, `i` in `0..=257` (`|d|²` is in `[1, 2]` on a narrow frame,
-/// within `2⁻²⁰`), Q30, rounded down; made at compile time with integers only.
-static SIGMA_TABLE: [u32; SIGMA_BINS as usize + 2] = sigma_table();
-
-const fn sigma_table() -> [u32; SIGMA_BINS as usize + 2] {
-    let mut table = [0u32; SIGMA_BINS as usize + 2];
-    let mut i = 0;
-    while i < table.len() {
-        // 2³⁰/√(1 + i/256) = √(2⁶⁸/(256 + i)).
-        table[i] = ((1u128 << 68) / (256 + i as u128)).isqrt() as u32;
-        i += 1;
-    }
-    table
-}
-
-/// `σ = 1/|d|` (Q15) and `σ²` (Q16, rounded) from `|D|²` as the run holds it (`|d|²` is its
-/// high word in Q26): [`SIGMA_TABLE`] and linear interpolation, within `2⁻¹⁹` relative
-/// (the table's bins are `2⁻⁸` wide and `σ''/σ ≤ ¾`).
-#[inline(always)]
-fn sigma_of(a: i64) -> (i32, u32) {
-    // |d|² − 1 in Q26, in [0, 1] up to rounding: the bin (8 bits) and the place in it (11).
-    let t = (((a >> 32) as i32) - (1 << 26)).clamp(0, (1 << 26) + (1 << 18) - 1) as u32;
-    let bin = (t >> 18) as usize;
-    let frac = (t >> 7) & 0x7ff;
-    let (lo, hi) = (
-        SIGMA_TABLE.get(bin).copied().unwrap_or(1 << 30),
-        SIGMA_TABLE.get(bin + 1).copied().unwrap_or(1 << 30),
-    );
-    // The table falls by at most 2²¹ per bin.
-    let s30 = lo - (((lo - hi) * frac) >> 11);
-    let s16 = ((s30 + (1 << 13)) >> 14).min(0xffff);
-    ((s30 >> 15) as i32, (s16 * s16 + (1 << 15)) >> 16)
-}
-
 /// `N·L` and `L·D̂` (both Q15) at a pixel: `D·L` as the run holds it, `σ` (Q15), `σ²`
 /// (Q16) and `N·V` (Q15), and `G` as held with its shift.
 #[inline(always)]
@@ -367,140 +352,6 @@ pub(super) fn fast_cosines(
     (nl, ld)
 }
 
-/// `|L + V|²` (Q30) below which the fast Blinn-Phong `h` is not within
-/// [`H_ERROR`](super::prepare::H_ERROR): `9/16`. Its error grows as `1/|L + V|` (the half vector of
-/// a light nearly behind the surface is ill-conditioned), and is within it from `|L + V| = ¾` on
-/// (test `fast_h_within_its_bound`).
-const BLINN_LEN2_MIN: u32 = 9 << 26;
-
-/// The fast `h = 1 − cos` (Q31, saturated: `h ≥ 1` is a lobe of 0) of Phong (`1 − R·V`) or
-/// Blinn-Phong (`1 − N·H`) from `N·L`, `N·V` and `L·D̂` (Q15), and whether it is within
-/// [`H_ERROR`](super::prepare::H_ERROR): not for Blinn-Phong where `|L + V|² < 9/16`, where the `h`
-/// given is 0 if the lobe can be anything but 0 (`N·H > 0`), so that the precise lobe decides.
-#[inline(always)]
-pub(super) fn fast_h(blinn: bool, nl: i32, nv: i32, ld: i32) -> (u32, bool) {
-    // h in Q29 (|h| < 2 here).
-    let h29 = if blinn {
-        // N·H = (N·L + N·V)/|L + V| with |L + V|² = 2 − 2·L·D̂ (V = −D̂).
-        let len2 = ((2i64 << 30) - ((ld as i64) << 16)).clamp(0, u32::MAX as i64) as u32;
-        if len2 < BLINN_LEN2_MIN {
-            return (if nl + nv > 0 { 0 } else { u32::MAX }, false);
-        }
-        let (y, e) = rsqrt(len2);
-        // 1/|L + V| = y·2^(15 − e) (len2 is Q30): N·H in Q29.
-        let p = mul_ii(nl + nv, y as i32); // |p| < 2³³
-        let nh = if e >= 29 {
-            p >> (e - 29).min(63)
-        } else {
-            p << (29 - e) // e ≥ 16
-        };
-        (1 << 29) - nh.clamp(-(1 << 30), 1 << 30) as i32
-    } else {
-        // 1 − R·V = 1 − 2·(N·L)(N·V) − L·D̂.
-        (1 << 29) - nl * nv - (ld << 14)
-    };
-    let h = if h29 <= 0 {
-        0
-    } else if h29 >= 1 << 30 {
-        u32::MAX
-    } else {
-        (h29 as u32) << 2
-    };
-    (h, true)
-}
-
-/// The lobe (U1F16) of a pixel whose `h` needs more than the fast path's bits: the fast
-/// path's formulas (`N·V = √E′·σ`, `L·D̂ = (d·L)·σ`, `N·L = G·σ² − (N·V)(L·D̂)`, then `h`) in
-/// 30-bit fractions from the same exact `|D|²`, `E′`, `G` and `D·L` (`g_dl`, as the run
-/// holds them), with `σ` and `√E′` from [`super::roots`] (within `2⁻³⁰`) instead of the
-/// tables, then [`narrow_lobe`] of `h` in Q31. `h` is within `2⁻²⁴` (`2⁻²⁴/|L + V|` for
-/// Blinn-Phong; test `precise_h_within_its_bound`), so the lobe, whose slope is at most `n`,
-/// within `n·2⁻²⁴` and `narrow_lobe`'s own `7.2·10⁻⁵`: `7·10⁻⁴` of its peak at `n = 10⁴`, the
-/// top of the range the fixed budget is held on; at the largest shininess, `10⁶`, up to 3%
-/// at the peak of a pinpoint highlight. Out of line: a few hundred pixels of a frame take
-/// it.
-#[inline(never)]
-fn precise_lobe(
-    blinn: bool,
-    n: Exact,
-    ns: &NarrowSphere,
-    e: i64,
-    d: V3<i32>,
-    (g, dl): (i64, i64),
-) -> u32 {
-    match precise_h(blinn, ns, e, d, (g, dl)) {
-        Some(h) => narrow_lobe(u32::try_from(h >> 30).unwrap_or(u32::MAX), n),
-        None => 0,
-    }
-}
-
-/// The precise `h = 1 − cos` of [`precise_lobe`] in U3F61 (`None` where Blinn-Phong's half
-/// vector is undefined, `L = −V`).
-#[inline(always)]
-fn precise_h(
-    blinn: bool,
-    ns: &NarrowSphere,
-    e: i64,
-    d: V3<i32>,
-    (g, dl): (i64, i64),
-) -> Option<u64> {
-    let (_, nl, nv, ld) = precise_cosines(ns, e, d, (g, dl))?;
-    precise_h_of(blinn, nl, nv, ld)
-}
-
-/// The precise cosines at a narrow hit, from the exact `|D|²` (of `d`), `E′` (`e`, as the
-/// track holds it) and a light's `G` and `D·L` (`g_dl`, as the run holds them): `σ = 2²⁹/|D|`
-/// in Q31, and `N·L`, `N·V` and `L·D̂` in Q30, each within a few units of `2⁻³⁰` (`σ` and
-/// `√E′` from [`super::roots`]). `None` for `d = 0`, which a narrow frame never has. Shared
-/// by the precise lobe and `precise_light`.
-#[inline(always)]
-pub(super) fn precise_cosines(
-    ns: &NarrowSphere,
-    e: i64,
-    d: V3<i32>,
-    (g, dl): (i64, i64),
-) -> Option<(u32, i64, i64, i64)> {
-    const ONE30: i64 = 1 << 30;
-    let a = d.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>(); // |D|² < 2⁶¹
-    let (ya, sa) = inv_sqrt(a)?;
-    // σ = 2²⁹/|D| in Q31: ya·2^(60 − sa), at most 2³¹.
-    let sigma = shift_saturating(ya as u64, 60 - sa as i32).min(1 << 31);
-    // √E′ in Q30 from E′ in Q60 (E′ ≤ 2, so below 2⁶¹), and N·V = √E′·σ, Q30.
-    let e60 = (e.max(0) as u64) << (31 - (ns.e_shift as u32).min(31));
-    let root = sqrt(e60).min(u32::MAX as u64) as u32;
-    let nv = ((mul_uu(root, sigma) >> 31) as i64).min(ONE30);
-    // L·D̂ = (d·L)·σ, Q30: D·L is d·L in Q59, |d·L| ≤ √2; clamped to the rounding's ±1.
-    let ld = (mul_iu((dl >> 29) as i32, sigma) >> 31).clamp(-ONE30, ONE30);
-    // N·L = G·σ² − (N·V)(L·D̂): G in Q29 (|G·σ²| ≤ 2 on a hit), σ² in Q30.
-    let g29 = high_bits(g, ns.g_shift as u32); // |G| ≤ |d|² ≤ 2 on a hit, as in `fast_cosines`
-    let sigma2 = (mul_uu(sigma, sigma) >> 32) as i32;
-    let nl =
-        ((mul_ii(g29, sigma2) >> 29) - (mul_ii(nv as i32, ld as i32) >> 30)).clamp(-ONE30, ONE30);
-    Some((sigma, nl, nv, ld))
-}
-
-/// The lobe's `h = 1 − cos` in U3F61 from `N·L`, `N·V` and `L·D̂` in Q30 (`None` where
-/// Blinn-Phong's half vector is undefined, `L = −V`): the tail of [`precise_h`], and of a
-/// point light's lobe (`point_light`).
-#[inline(always)]
-pub(super) fn precise_h_of(blinn: bool, nl: i64, nv: i64, ld: i64) -> Option<u64> {
-    const ONE30: i64 = 1 << 30;
-    let cos = if blinn {
-        // N·H = (N·L + N·V)/|L + V|, |L + V|² = 2 − 2·L·D̂ (V = −D̂), Q30.
-        let len2 = (2 * ONE30 - 2 * ld).max(0) as u64;
-        let (y, s) = inv_sqrt(len2)?;
-        // 1/|L + V| = y·2^(15 − s); |N·L + N·V| ≤ 2.
-        let sum = (nl + nv).clamp(-2 * ONE30, 2 * ONE30);
-        let p = mul_iu((sum >> 1) as i32, y); // (N·L + N·V)/2 times y, Q30 + s − 15
-        p >> (s - 16).min(63)
-    } else {
-        // R·V = 2·(N·L)(N·V) + L·D̂.
-        (mul_ii(nl as i32, nv as i32) >> 29) + ld
-    };
-    // h = 1 − cos in Q30, then U3F61 (h ≥ 1 is a lobe of 0, which `lobe` gives).
-    Some(((ONE30 - cos).clamp(0, 4 * ONE30 - 1) as u64) << 31)
-}
-
 /// The states of the first `lights` lights, to move one pixel right; for one or two lights of
 /// capacity, all of them (a light beyond the frame's has zero steps, so moving it changes
 /// nothing), which spares the pixel loop a loop of unknown length.
@@ -511,37 +362,6 @@ fn first<const L: usize>(states: &mut [Step; L], lights: usize) -> &mut [Step] {
     } else {
         states.get_mut(..lights).unwrap_or_default()
     }
-}
-
-/// The fast lobe (U1F16) at `h` (Q31) where it is within half a level (see the module
-/// docs): everywhere the fast `h` is `trusted` if the sphere's `fast_lobe_max` says so,
-/// otherwise where `h ≤ ½` and the lobe is at most `fast_lobe_max`; `None` where the
-/// precise lobe must decide.
-#[inline(always)]
-pub(super) fn fast_lobe(ns: &NarrowSphere, n: Exact, h: u32, trusted: bool) -> Option<u32> {
-    if !trusted || ns.fast_lobe_max == 0 {
-        return None;
-    }
-    let lobe = narrow_lobe(h, n);
-    (ns.fast_lobe_max >= 1 << 16 || (h <= 1 << 30 && lobe <= ns.fast_lobe_max)).then_some(lobe)
-}
-
-/// `(v >> s) as i32` for `s` in `1..=31`, where the result fits: two 32-bit shifts (a
-/// variable 64-bit shift is a library call on ARMv6-M).
-#[inline(always)]
-pub(super) fn high_bits(v: i64, s: u32) -> i32 {
-    debug_assert!((1..32).contains(&s), "shift {s}");
-    debug_assert!((v >> s) as i32 as i64 == v >> s, "{v} >> {s} does not fit");
-    let s = s & 31;
-    ((((v >> 32) as u32) << ((32 - s) & 31)) | ((v as u32) >> s)) as i32
-}
-
-/// `v·s/2¹⁶` for a signed `v` and `s` in `[0, 2¹⁶]`, rounded down: two 16×16 products.
-#[inline(always)]
-fn scale_signed_q16(v: i32, s: u32) -> i32 {
-    let high = (v >> 16) * s as i32;
-    let low = (((v & 0xffff) as u32 * s) >> 16) as i32;
-    high + low
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
@@ -930,163 +750,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 }
 
-/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern of a `u32`.
-const BINS: usize = 256;
-
-/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`), indexed by
-/// the top 8 bits of `m` (`64..=255`); the entries below 64, which a normalized value never
-/// reaches, repeat bin 64's, so every `u32` indexes it without a check.
-static RSQRT_TABLE: [u16; BINS] = rsqrt_table();
-
-const fn rsqrt_table() -> [u16; BINS] {
-    let mut table = [0u16; BINS];
-    let mut i = 0;
-    while i < BINS {
-        // Bin `64 + j` covers m in [(64 + j)/256, (65 + j)/256); its centre is
-        // (2j + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2j + 129)).
-        let j = i.saturating_sub(64) as u64;
-        table[i] = ((1u64 << 39) / (2 * j + 129)).isqrt() as u16;
-        i += 1;
-    }
-    table
-}
-
-/// `1/√x` for `x > 0` as `(y, e)`: `1/√x ≈ y·2^-e`, `y` in about `[2¹⁵, 2¹⁶]`, within
-/// `1.5·2⁻¹⁵` relative: a table lookup and one Newton step `y·(3 − m·y²)/2`.
-#[inline(always)]
-pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
-    let k = even_leading_zeros(x);
-    (rsqrt_normalized(x << k), 31 - k / 2)
-}
-
-/// `2³¹/√m` for `m` in `[2³⁰, 2³²)`, within `1.5·2⁻¹⁵` relative (in about `[2¹⁵, 2¹⁶]`).
-#[inline(always)]
-fn rsqrt_normalized(m: u32) -> u32 {
-    debug_assert!(m >= 1 << 30, "m = {m:#x} is not normalized");
-    let y0 = RSQRT_TABLE
-        .get((m >> 24) as usize)
-        .copied()
-        .unwrap_or(1 << 15) as u32;
-    // m·y0² as Q30 from their top 16 bits (y0² Q30 → Q14, m Q32 → Q16): about 2³⁰.
-    let p = ((y0 * y0 + (1 << 15)) >> 16) * (m.saturating_add(1 << 15) >> 16);
-    let corr = (3u32 << 30).saturating_sub(p);
-    // y0·corr/2³¹, rounded at both steps (y0 < 2¹⁶, corr < 3·2³⁰: no overflow).
-    (y0 * ((corr + (1 << 15)) >> 16) + (1 << 14)) >> 15
-}
-
-/// `√x` for `x = i/256`, `i` in `0..=256`, Q29, rounded down; made at compile time with
-/// integers only. A normalized argument only reads entries from 64 on; the ones below are
-/// there so that the top byte indexes the table with no check.
-static SQRT_TABLE: [u32; 257] = sqrt_table();
-
-const fn sqrt_table() -> [u32; 257] {
-    let mut table = [0u32; 257];
-    let mut i = 0;
-    while i < table.len() {
-        // 2²⁹·√(i/256) = √(2⁵⁰·i).
-        table[i] = ((1u64 << 50) * i as u64).isqrt() as u32;
-        i += 1;
-    }
-    table
-}
-
-/// `√x` of a Q30 value in `[0, 2³⁰]`, as Q15: the value normalized by an even shift to
-/// `[¼, 1)`, [`SQRT_TABLE`] and linear interpolation (within `2⁻¹⁷` relative: `√''/√ ≥ −4`
-/// on `[¼, 1)`, bins `2⁻⁸` wide), rounded. Out of line on ARMv6-M: the pixel loop calls it
-/// from two places, and one copy is smaller there at no more instructions per frame.
-#[cfg_attr(not(shadeline_short_mul), inline(always))]
-#[cfg_attr(shadeline_short_mul, inline(never))]
-pub(super) fn sqrt_q30(x: u32) -> i32 {
-    if x == 0 {
-        return 0;
-    }
-    // N·V's argument is mostly in [2²⁶, 2³⁰]: there two comparisons give the even count.
-    let k = if x >= 1 << 28 {
-        if x >= 1 << 30 {
-            0
-        } else {
-            2
-        }
-    } else if x >= 1 << 26 {
-        4
-    } else {
-        even_leading_zeros(x)
-    };
-    debug_assert_eq!(k, even_leading_zeros(x));
-    let m = x << k; // in [2³⁰, 2³²)
-    let bin = (m >> 24) as usize; // 64..=255
-    let frac = (m >> 13) & 0x7ff;
-    let (lo, hi) = (
-        SQRT_TABLE.get(bin).copied().unwrap_or(1 << 29),
-        SQRT_TABLE.get(bin + 1).copied().unwrap_or(1 << 29),
-    );
-    // The table rises by at most 2²¹ per bin. √(m/2³²) in Q29; √x = that·2^(1 − k/2).
-    let root = lo + (((hi - lo) * frac) >> 11);
-    let shift = 13 + k / 2;
-    ((root + (1 << (shift - 1))) >> shift) as i32
-}
-
-/// The number of leading zeros of `x > 0`, rounded down to even: the shift that brings `x`
-/// into `[2³⁰, 2³²)` by a power of four. `CLZ` where the core has it; on ARMv6-M, which
-/// has not, the binary search of [`super::mul`].
-#[inline(always)]
-fn even_leading_zeros(x: u32) -> u32 {
-    #[cfg(shadeline_short_mul)]
-    {
-        super::mul::search_leading_zeros32(x) & !1
-    }
-    #[cfg(not(shadeline_short_mul))]
-    {
-        x.leading_zeros().min(30) & !1
-    }
-}
-
-/// `a·b/2¹⁶` for `b` in `[0, 2¹⁶]`, exact (rounded down), saturating: two 16×16 products
-/// on ARMv6-M, one widening product elsewhere.
-#[inline(always)]
-pub(super) fn scale_q16(a: u32, b: u32) -> u32 {
-    #[cfg(shadeline_short_mul)]
-    {
-        let high = (a >> 16) * b; // ≤ 2³²− 2¹⁶
-        let low = ((a & 0xffff) * b) >> 16;
-        high.saturating_add(low)
-    }
-    #[cfg(not(shadeline_short_mul))]
-    {
-        u32::try_from(mul_uu(a, b) >> 16).unwrap_or(u32::MAX)
-    }
-}
-
-/// `k·v/2¹⁶`, rounded down, saturating: [`scale_q16`] when `k ≤ 1` (U16F16), which
-/// `kd·albedo` and `ks` nearly always are, a full product otherwise.
-#[inline(always)]
-fn mul_u16f16(k: u32, v: u32) -> u32 {
-    if k <= 1 << 16 {
-        scale_q16(v, k)
-    } else {
-        u32::try_from(mul_uu(k, v) >> 16).unwrap_or(u32::MAX)
-    }
-}
-
-/// `a·b/2¹⁵` for `b` in `[0, 2¹⁵]`, exact (rounded down), saturating: two 16×16 products
-/// on ARMv6-M, one widening product elsewhere.
-#[inline(always)]
-pub(super) fn scale_q15(a: u32, b: i32) -> u32 {
-    let b = b.clamp(0, ONE) as u32;
-    #[cfg(shadeline_short_mul)]
-    {
-        let high = (a >> 16) * b; // < 2³¹
-        let low = ((a & 0xffff) * b) >> 15;
-        high.checked_mul(2)
-            .and_then(|h| h.checked_add(low))
-            .unwrap_or(u32::MAX)
-    }
-    #[cfg(not(shadeline_short_mul))]
-    {
-        u32::try_from(mul_uu(a, b) >> 15).unwrap_or(u32::MAX)
-    }
-}
-
 /// The columns of `[start, end)` where `b_at(column)` is negative, `None` if there are none.
 /// `b` is linear in the column (growing if `rises`, otherwise not), so they are one
 /// interval: the first column is tested, the last one too unless the first one's sign and
@@ -1123,100 +786,12 @@ fn front_part(start: u32, end: u32, rises: bool, b_at: impl Fn(u32) -> i64) -> O
     })
 }
 
-/// The lobe `(1 − h)ⁿ` in U1F16 (`1 << 16` is 1) for `h` in Q31, in 32-bit arithmetic: the
-/// fast lobe's and the precise lobe's.
-///
-/// The same route as [`super::pow::lobe`] (the full-width kernel's) with fewer bits:
-/// `g = −log2(1 − h)` in Q27 (by its series `h·(1 + h/2 + h²/3)/ln 2` for `h < 2⁻⁵`, the
-/// factor times the whole of `h` in one 32×32→64 product so that `g` keeps `h`'s relative
-/// precision however small `h` is; otherwise from a power of two, the shared 64-entry table
-/// of `log2 m₀` and `ln(1 + δ) ≈ δ − δ²/2 + δ³/3`), `y = n·g` in Q16 (one 32×32→64
-/// product), and `2^-y` from the shared table of `2^(−i/64)` and `e^(−r·ln 2) ≈ 1 − a + a²/2`.
-/// Within `5.4·10⁻⁵` of `powf` for `n` up to 1250 and `7.2·10⁻⁵` at `10⁴` (`g`'s last bit
-/// times `n` beyond: `5·10⁻³` at `10⁶`; test `narrow_lobe_matches_powf`), a few U1F16 steps,
-/// which is the precision the kernel keeps of a lobe. A fraction of the 64-bit `pow::lobe`'s
-/// instructions on ARMv6-M; out of line there, where it is both smaller and faster than
-/// inlined in the pixel loop and the precise lobe (`docs/performance.md, "Choices measured"`).
-#[cfg_attr(shadeline_short_mul, inline(never))]
-#[cfg_attr(not(shadeline_short_mul), inline(always))]
-pub(super) fn narrow_lobe(h: u32, n: Exact) -> u32 {
-    const ONE_Q31: u32 = 1 << 31;
-    if h >= ONE_Q31 {
-        return 0;
-    }
-    let g = if h < 1 << 26 {
-        // p = 1 + h/2 + h²/3 in Q30; (h>>11)² is h² in Q40.
-        let h2 = ((h >> 11) * (h >> 11)) >> 10;
-        let p = (1 << 30) + (h >> 2) + (((h2 >> 4) * 21_845) >> 12);
-        // q = p/ln 2 in Q31 (< 1.5·2³¹), then g = h·q in Q27, from the whole of h: a
-        // 32×32→64 product, so that g keeps h's relative precision however small h is.
-        let q = (p >> 14) * ((INV_LN2_F31 >> 16) as u32);
-        (mul_uu(h, q) >> 35) as u32
-    } else {
-        let c = ONE_Q31 - h; // 1 − h in Q31, > 0
-        let e = c.leading_zeros(); // ≥ 1
-        let m = c << e; // m₀·(1 + δ) in U1F31
-        let (inv_m0, log2_m0) = LOG_TABLE
-            .get(((m >> 25) & 63) as usize)
-            .copied()
-            .unwrap_or((1 << 31, 0));
-        // δ = (m − m₀)/m₀ in Q31 (< 2²⁵): (m − m₀) < 2²⁵ in Q31, taken as Q22.
-        let delta = ((((m & ((1 << 25) - 1)) >> 9) * (inv_m0 >> 15)) >> 7) as i32;
-        let d10 = delta >> 10; // Q21, |d10| < 2¹⁵
-        let d2 = (d10 * d10) >> 11; // δ² in Q31
-        let d3 = ((((d2 >> 9) * d10) >> 12) * 21_845) >> 16; // δ³/3 in Q31 (|δ³| < 2¹³)
-        let ln = delta - (d2 >> 1) + d3; // ln(1 + δ), Q31
-        let log2_1p = ((ln >> 9) * ((INV_LN2_F31 >> 17) as i32)) >> 9; // Q27
-        let log2_m = (log2_m0 >> 5) as i64 + log2_1p as i64; // Q27, in [0, 1)
-        (((e as i64) << 27) - log2_m).clamp(0, u32::MAX as i64) as u32
-    };
-    let y = shift_saturating(mul_uu(n.mantissa, g), n.exponent - 11); // Q16
-    let k = y >> 16;
-    if k >= 17 {
-        return 0;
-    }
-    let f = y & 0xffff;
-    debug_assert!(((f >> 10) as usize) < EXP_TABLE.len());
-    let base = EXP_TABLE.get((f >> 10) as usize).copied().unwrap_or(0) >> 15; // Q16, ≤ 2¹⁶
-    let a = ((f & 1023) * 45_426) >> 16; // r·ln 2 in Q16, < 2¹⁰
-    let e = (1 << 16) - a + ((a * a) >> 17); // e^(−a), Q16
-    let v = (base * (e >> 1)) >> 15; // ≤ 2¹⁶
-    (v + ((1 << k) >> 1)) >> k
-}
-
 #[cfg(test)]
 pub(super) mod tests {
     use super::*;
+    use crate::fixed::exact::Exact;
+    use crate::fixed::narrow_lobe::{narrow_lobe, precise_h};
     use crate::test_scenes::uniform;
-
-    #[test]
-    fn rsqrt_within_one_and_a_half_steps_of_two_to_the_minus_15() {
-        let mut worst = 0.0f64;
-        let mut x = 1u64;
-        while x <= u32::MAX as u64 {
-            for v in [x, x + x / 3, x + x / 2, x + 7 * x / 9] {
-                let Ok(v) = u32::try_from(v) else {
-                    continue;
-                };
-                let (y, e) = rsqrt(v);
-                let got = y as f64 / (e as f64).exp2();
-                let want = 1.0 / (v as f64).sqrt();
-                worst = worst.max((got / want - 1.0).abs());
-            }
-            x = x * 2 + 1;
-        }
-        assert!(worst <= 1.5 / 32768.0, "relative error {worst}");
-    }
-
-    #[test]
-    fn sqrt_q30_within_one_step() {
-        for k in 0..=1000u64 {
-            let x = ((k << 30) / 1000) as u32;
-            let want = ((x as f64) / (1u64 << 30) as f64).sqrt() * 32768.0;
-            let got = sqrt_q30(x) as f64;
-            assert!((got - want).abs() <= 1.5, "{x}: {got} vs {want}");
-        }
-    }
 
     extern crate std;
     use crate::runs::merge_runs;

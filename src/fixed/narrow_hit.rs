@@ -14,7 +14,7 @@
 //! One table square root and one reciprocal (the narrow kernel's `rsqrt`, squared) per
 //! pixel; `c` and `r·c` are the sphere's (`NarrowSphere::c_q30`, `t_mantissa`).
 
-use super::narrow::{rsqrt, sqrt_q30};
+use super::narrow_roots::{rsqrt, sqrt_q30};
 use super::prepare::NarrowSphere;
 
 /// The hit's distance `t` (raw) along `D̂` on sphere `ns` from `N·V` (Q15):

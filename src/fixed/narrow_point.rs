@@ -37,24 +37,17 @@
 //! precise `t`).
 
 use super::exact::Exact;
-use super::narrow::{fast_cosines, fast_h, narrow_lobe, rsqrt, scale_q15, scale_q16};
-use super::narrow::{Surface, ONE};
+use super::narrow::fast_cosines;
+use super::narrow::Surface;
+use super::narrow::{Casters, PointSeen};
 use super::narrow_hit::{bit_length, fast_t, mul_q15, shift_u32};
-use super::narrow_point_shadow::Casters;
+use super::narrow_lobe::{fast_h, narrow_lobe};
+use super::narrow_roots::rsqrt;
+use super::narrow_scale::ONE;
+use super::narrow_scale::{scale_q15, scale_q16};
 use super::narrow_terms::fast_terms;
 use super::prepare::{FixedLight, FixedSphere, NarrowLight, NarrowSphere, PreparedFixed};
 use super::vector::V3;
-
-/// What the fast point light made of a light at a pixel.
-pub(super) enum PointSeen {
-    /// The light's diffuse and specular sums (U16F16 per channel, before `kd·albedo` and
-    /// `ks`).
-    Lit([u32; 3], [u32; 3]),
-    /// The sphere's own shadow.
-    Blocked,
-    /// The light needs the precise path at this pixel (`precise_light`).
-    Precise,
-}
 
 /// The margin (in cosine) by which [`NarrowLight::cone`]'s threshold is lowered: many times
 /// the error of the direction it is compared with, which the prepare holds below `2⁻⁹` where

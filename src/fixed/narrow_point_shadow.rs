@@ -24,6 +24,7 @@
 //! The crate's tests hold both to the precise ray: no caster they clear blocks it, and
 //! every pixel they find blocked, it blocks (assertions in `fast_point` under `cfg(test)`).
 
+use super::narrow::Casters;
 use super::narrow_hit::{bit_length, mul_q15};
 #[cfg(feature = "narrow-precise")]
 use super::narrow_point::FastPoint;
@@ -31,22 +32,6 @@ use super::prepare::{FixedLight, NarrowLight, PreparedFixed};
 #[cfg(feature = "narrow-precise")]
 use super::vector::Len;
 use super::vector::{each3, V3};
-
-/// Whether the shadow test toward a distant light starts with the distance test from the
-/// fast `X` (`PreparedFixed::distant_casters`): on ARMv6-M, where it spares most pixels the
-/// normal's six 32×32→64-bit products (calls there) and shortens the exponent series' frame
-/// and the floor's; on cores with a widening multiply the normal and the exact ray cost less
-/// than the test (`docs/performance.md`, "Choices measured"). The crate's own tests turn it
-/// on everywhere, and hold it to the exact ray's decisions.
-pub(crate) const DISTANCE_TEST: bool = cfg!(any(shadeline_short_mul, test));
-
-/// What the shadow filters found for a point light at a pixel.
-pub(super) enum Casters {
-    /// A caster blocks the ray.
-    Blocked,
-    /// The casters that only the precise ray can decide (a mask, bit `k` for sphere `k`).
-    Left(u32),
-}
 
 /// What the distance test found for one caster.
 #[derive(PartialEq, Eq)]

@@ -12,9 +12,9 @@
 
 use super::exact::{arriving, shift_saturating};
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
-use super::narrow::{
-    narrow_lobe, precise_cosines, precise_h_of, scale_q15, scale_q16, Surface, NORMAL_LIMIT,
-};
+use super::narrow::{Surface, NORMAL_LIMIT};
+use super::narrow_lobe::{narrow_lobe, precise_cosines, precise_h_of};
+use super::narrow_scale::{scale_q15, scale_q16};
 use super::prepare::{
     FixedLight, FixedSphere, NarrowLight, NarrowPoint, NarrowSphere, PreparedFixed,
 };

@@ -10,11 +10,14 @@
 //! which the prepare makes from the weights' sum and the largest exponent); the others take
 //! the precise light.
 
-use super::narrow::{fast_cosines, fast_h, fast_lobe, narrow_lobe, scale_q15, sqrt_q30};
-use super::narrow::{Surface, ONE};
+use super::narrow::fast_cosines;
+use super::narrow::Surface;
+use super::narrow::{Casters, PointSeen, DISTANCE_TEST};
 use super::narrow_hit::{fast_t, shift_u32};
-use super::narrow_point::PointSeen;
-use super::narrow_point_shadow::{Casters, DISTANCE_TEST};
+use super::narrow_lobe::{fast_h, fast_lobe, narrow_lobe};
+use super::narrow_roots::sqrt_q30;
+use super::narrow_scale::scale_q15;
+use super::narrow_scale::ONE;
 use super::prepare::{FixedLight, FixedSphere, NarrowLight, NarrowSphere, PreparedFixed};
 use super::vector::V3;
 

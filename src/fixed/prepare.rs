@@ -56,7 +56,7 @@ pub(crate) struct NarrowView {
 }
 
 impl NarrowView {
-    /// The quadrics' three directions `[forward, step_x, step_y]` (see [`quadric`]).
+    /// The quadrics' three directions `[forward, step_x, step_y]` (see [`super::quadric`]).
     pub(crate) fn dirs(&self) -> [V3<i32>; 3] {
         [self.forward, self.step_x, self.step_y]
     }
