@@ -150,6 +150,8 @@ mod narrow_hit;
 mod narrow_lobe;
 #[cfg(feature = "narrow-precise")]
 mod narrow_point;
+#[cfg(feature = "narrow-precise")]
+mod narrow_point_prepare;
 mod narrow_point_shadow;
 #[cfg(feature = "narrow-precise")]
 mod narrow_precise;
