@@ -33,6 +33,21 @@ use super::prepare::{FixedLight, NarrowLight, PreparedFixed};
 use super::vector::Len;
 use super::vector::{each3, V3};
 
+/// `D`'s coordinate along `u` (Q15) in Q12, from the narrow direction `d` (`|d| ≤ √2`, Q29),
+/// within three units: `d`'s top bits in 16×16-bit products.
+#[inline(always)]
+fn across_q12(d: V3<i32>, u: &[i16; 3]) -> i32 {
+    let [u0, u1, u2] = *u;
+    ((d[0] >> 16) * u0 as i32 + (d[1] >> 16) * u1 as i32 + (d[2] >> 16) * u2 as i32) >> 16
+}
+
+/// `a·b/2¹²` rounded down (within one unit), for `0 ≤ a < 2²⁸` and `|b| < 2¹³`, in
+/// 32×32→32-bit products.
+#[inline(always)]
+fn mul_q12(a: i32, b: i32) -> i32 {
+    (a >> 12) * b + (((a & 0xfff) * b) >> 12)
+}
+
 /// What the distance test found for one caster.
 #[derive(PartialEq, Eq)]
 enum Verdict {
@@ -98,13 +113,21 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// The `casters` of distant light `light_index` at a narrow hit along `d` (`σ` in Q15)
-    /// whose distance test ([`distance_test`]) cannot settle them, from the fast `t`, or
-    /// [`Casters::Blocked`]. The margin for the direction is its Q15 rounding. First, the
-    /// same distance across the light in two coordinates, from the quick caster test's
-    /// basis (`PreparedFixed::across`) and each caster's `NarrowLight::across`: a caster
-    /// farther across than its radius and a margin (the fast `X`'s, as for the distance test,
-    /// and `2¹⁸` raw for the basis's error over the scene's extent) is clear. Out of line:
-    /// only pixels the caster filter passes take it.
+    /// whose tests cannot settle them, from the fast `t`, or [`Casters::Blocked`]. Two
+    /// stages per caster, the second only for those the first leaves:
+    ///
+    /// - the distance across the light of the fast `X = eye + t·D̂` from the caster's axis, in
+    ///   two coordinates (the light's `u`, `v`, [`PreparedFixed::across`], in the quick
+    ///   caster test's units): `X⊥ − C⊥ = t·D̂⊥ − (C⊥ − eye⊥)`, from `D̂⊥` ([`across_q12`]
+    ///   times `σ`) and each caster's `NarrowLight::across`, with no hit point. A caster
+    ///   farther than its radius and a margin in either coordinate is clear. The margin:
+    ///   `2ε`, 256 raw for the exact ray's own rounding, `2¹⁸` raw for the basis's error over
+    ///   the scene's extent, `t/2¹⁰` raw for the fast `t`, and `t/2⁹` with nine units more
+    ///   (in the quick units) for `D̂⊥`'s, `t`'s and `C⊥ − eye⊥`'s roundings;
+    /// - the distance test ([`distance_test`]) from the fast `X`, with the margin of the
+    ///   direction's Q15 rounding.
+    ///
+    /// Out of line: only pixels the caster filter passes take it.
     #[inline(never)]
     pub(super) fn distant_casters(
         &self,
@@ -112,44 +135,54 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         casters: u32,
         (t, d, sigma): (u32, V3<i32>, i32),
     ) -> Casters {
-        let Some(FixedLight::Distant { to_light, .. }) = self.lights.get(light_index) else {
+        let (Some(FixedLight::Distant { to_light, .. }), Some([u, v])) =
+            (self.lights.get(light_index), self.across.get(light_index))
+        else {
             return Casters::Left(casters);
         };
-        let away = to_light.map(|c| -((c.to_bits() + (1 << 14)) >> 15));
-        let x = self.hit_point(t, d, sigma);
-        let base = (t >> 10) as i32 + 2 * self.epsilon.to_bits() + 256;
-        // X across the light, in the quick caster test's units: a first, two-coordinate
-        // distance test against each caster's `across` (see the module docs).
         let shift = self.quick_shift.min(31);
-        let Some([u, w]) = self.across.get(light_index) else {
-            return Casters::Left(casters);
-        };
-        let across = |u: &[i16; 3]| {
-            let p = (0..3).fold(0i32, |p, i| p.wrapping_add(mul_q15(x[i], u[i] as i32)));
-            p >> shift
-        };
-        let (xu, xw) = (across(u), across(w));
-        let slack = ((base + (1 << 18)) >> shift) + 3;
-        let mut left = casters;
-        for (k, (lights, s)) in self
-            .narrow_lights
-            .iter()
-            .zip(&self.spheres)
-            .enumerate()
-            .take(32)
-        {
-            if casters & (1 << k) == 0 {
-                continue;
-            }
-            let Some(&NarrowLight {
-                across: [cu, cw], ..
-            }) = lights.get(light_index)
+        // t in the quick test's units, and D̂⊥ in Q12 (σ = 1/|d| ≤ 1 in Q15).
+        let tq = (t >> shift) as i32;
+        let near = tq < 1 << 28;
+        let (hu, hv) = (
+            (across_q12(d, u) * sigma) >> 15,
+            (across_q12(d, v) * sigma) >> 15,
+        );
+        let base = (t >> 10) as i32 + 2 * self.epsilon.to_bits() + 256;
+        let slack = ((base + (1 << 18)) >> shift) + (tq >> 9) + 10;
+        let mut left = 0;
+        let mut rest = casters;
+        let mut k = 0;
+        while rest != 0 {
+            let bit = rest & 1;
+            (rest, k) = (rest >> 1, k + 1);
+            let (Some(lights), Some(s)) = (self.narrow_lights.get(k - 1), self.spheres.get(k - 1))
             else {
+                break;
+            };
+            let Some(light) = lights.get(light_index).filter(|_| bit != 0) else {
                 continue;
             };
-            let reach = (s.radius.to_bits() >> shift) + slack;
-            if (xu - cu).abs() > reach || (xw - cw).abs() > reach {
-                left &= !(1 << k);
+            let k = k - 1;
+            let r = s.radius.to_bits() >> shift;
+            if near {
+                let [ou, ov] = light.across;
+                let reach = r + slack;
+                let xu = mul_q12(tq, hu) - ou;
+                let xv = mul_q12(tq, hv) - ov;
+                if xu.abs() > reach || xv.abs() > reach {
+                    continue;
+                }
+            }
+            left |= 1 << k;
+        }
+        if left == 0 {
+            return Casters::Left(0);
+        }
+        let away = to_light.map(|c| -((c.to_bits() + (1 << 14)) >> 15));
+        let x = self.hit_point(t, d, sigma);
+        for (k, s) in self.spheres.iter().enumerate().take(32) {
+            if left & (1 << k) == 0 {
                 continue;
             }
             let v = each3(|i| s.center[i].to_bits().wrapping_sub(x[i]));

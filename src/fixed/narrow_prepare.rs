@@ -444,6 +444,24 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         Ok(())
     }
 
+    /// A raw point `p`'s offset from the eye across light `light`, `(p − eye)·u` and
+    /// `(p − eye)·v` with `u`, `v` the light's [`PreparedFixed::across`], in the quick caster
+    /// test's units, rounded to the nearest and held within `2³⁰` (a sphere's centre is well
+    /// inside).
+    fn across_from_eye(&self, p: V3<i32>, light: usize) -> [i32; 2] {
+        let shift = 15 + self.quick_shift;
+        let limit = 1i64 << 30;
+        let eye = self.eye.map(|c| c.to_bits());
+        self.across.get(light).map_or([0; 2], |uv| {
+            // The offset times u in raw units times 2¹⁵, to the quick test's units.
+            uv.map(|u| {
+                let u = u.map(i32::from);
+                let at = (dot_ii(p, u) - dot_ii(eye, u) + (1 << (shift - 1))) >> shift;
+                at.clamp(-limit, limit) as i32
+            })
+        })
+    }
+
     /// [`NarrowSphere::quick_margin`] of sphere `i`, in the quick test's units (`2^s` raw,
     /// `s` the frame's `quick_shift`): with `Ω` the largest `|O − C_k|` over its lifted
     /// points `O` and the casters `k` (at most the largest distance of centres plus
@@ -542,14 +560,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .narrow_casters(i, l.map(Unit::from_bits))
                 .ok_or("center")?,
         };
-        let shift = 15 + self.quick_shift;
-        let across = self.across.get(light).map_or([0; 2], |uv| {
-            // C·u in raw units times 2¹⁵ (|C| < 2³⁰ raw), to the quick test's units.
-            uv.map(|u| {
-                let c = own.center.map(|c| c.to_bits());
-                ((dot_ii(c, u.map(i32::from)) + (1 << (shift - 1))) >> shift) as i32
-            })
-        });
+        let across = self.across_from_eye(own.center.map(|c| c.to_bits()), light);
         #[cfg(feature = "narrow-precise")]
         let cone = match self.lights.get(light) {
             Some(FixedLight::Point { position, .. }) => self.point_cone(own, position),

@@ -171,9 +171,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// The quick caster test's view of sphere `index`'s lifted point `O = C + (r + ε)·N`
-    /// for light `light`: `(O·u, O·v)` in its units ([`PreparedFixed::quick_shift`]; `u`, `v` the light's
-    /// [`across`](PreparedFixed::across)), from `C·u`, `C·v` and `N·u`, `N·v` in 16×16-bit
-    /// products, and the sphere's margin; `None` where the sphere has no quick test.
+    /// for light `light`: `((O − eye)·u, (O − eye)·v)` in its units
+    /// ([`PreparedFixed::quick_shift`]; `u`, `v` the light's
+    /// [`across`](PreparedFixed::across)), from `NarrowLight::across` and `N·u`, `N·v` in
+    /// 16×16-bit products, and the sphere's margin; `None` where the sphere has no quick
+    /// test.
     #[inline(always)]
     fn quick_across(&self, index: usize, n: V3<i32>, light: usize) -> Option<([i32; 2], i32)> {
         let own = self.spheres.get(index)?;

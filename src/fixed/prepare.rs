@@ -161,9 +161,10 @@ pub(crate) struct NarrowLight {
     pub ahead: i32,
     /// `(N·L)²` (Q30) above this: no caster is within reach.
     pub reach: u32,
-    /// The sphere's centre across the light, `C·u` and `C·v` in the quick caster test's
-    /// units ([`PreparedFixed::quick_shift`]), `u` and `v` the light's
-    /// [`PreparedFixed::across`]: the quick caster test's constants.
+    /// The sphere's centre across the light from the eye, `(C − eye)·u` and `(C − eye)·v`
+    /// in the quick caster test's units ([`PreparedFixed::quick_shift`]), `u` and `v` the
+    /// light's [`PreparedFixed::across`]: the constants of the quick caster test and of the
+    /// distance test's first stage (`PreparedFixed::distant_casters`).
     pub across: [i32; 2],
     /// For a point light, where the fast point light (`narrow_point`) shades this sphere:
     /// 0 nowhere; otherwise the fast lobe's limit, as `NarrowSphere::fast_lobe_max` is for
