@@ -13,8 +13,8 @@
 //! purpose: `mul_add` (it fuses only with `+fma`, so it would change bits between builds) and
 //! approximate reciprocals.
 //!
-//! `core` has no `f32::sqrt` on stable, and `micromath`'s `sqrt` is an approximation (up to
-//! 6 % relative error, measured), which would break the one-level agreement with the `f64`
+//! `core` has no `f32::sqrt` on stable, and `micromath`'s `sqrt` is an approximation (percent-level
+//! relative error), which would break the one-level agreement with the `f64`
 //! reference; `libm::sqrtf` and `libm::sqrt` are correctly rounded, so the scalars use them.
 
 use core::ops::{Add, Div, Mul, Neg, Sub};

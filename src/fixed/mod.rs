@@ -8,8 +8,7 @@
 //! `incoming`, `shadow`, `diffuse`, `specular` per light, and `combine`; then `encode`). Its contract is agreement with the `f64`
 //! [`reference`](crate::reference) within a stated budget (`tests/fixed_agreement.rs`: at
 //! most 2 levels per 8-bit channel, ≥ 99% within 1 level, ≤ 0.1% of ray decisions differ;
-//! measured on the exponent series and 64 random scenes: at most 1 level, at most 0.012% of
-//! a frame's decisions differ), and bit-identical frames on every target
+//! the measured agreement is in `docs/accuracy.md`), and bit-identical frames on every target
 //! (`tests/fixed_golden.rs`; `.ci/no-float-check` proves the row function calls no
 //! soft-float routine on `thumbv6m-none-eabi`).
 //!
@@ -88,17 +87,16 @@
 //!
 //! # Costs
 //!
-//! Frames whose lights are all distant and whose spheres use the classic models (the
-//! conditions are in its module, `narrow`) are shaded by the narrow kernel: no vectors per
-//! pixel, but the ray's discriminant and each light's `N·L` numerator as exact quadrics in
-//! the column, forward-differenced (two 64-bit additions each), 16×16→32-bit products, two
-//! table lookups with linear interpolation for `1/|D|` and `N·V`, and 64-bit arithmetic only
-//! for the bright part of a narrow highlight (`precise_lobe`). On the exponent series at
-//! 320×240 (`.ci/firmware`, firmware builds without `full-width`) a frame takes 6.2 M
-//! instructions on the Cortex-M0, 4.4 M on the Cortex-M4F and 4.6 M on the RV32IMAC, with
-//! the same bits on all three. Without `full-width` each sphere is tested only at the pixels
-//! its hit test passes (`outline`; on ARMv6-M within its rows and columns, see there); with
-//! it, 1.16 sphere-pixels are tested per covered pixel (`spans`).
+//! Frames whose lights are distant or point lights of radius 0 and whose spheres use the
+//! classic, Lambert or normalized models (the conditions are in its module, `narrow`) are
+//! shaded by the narrow kernel: no vectors per pixel, but the ray's discriminant and each
+//! light's `N·L` numerator as exact quadrics in the column, forward-differenced (two 64-bit
+//! additions each), 16×16→32-bit products, two table lookups with linear interpolation for
+//! `1/|D|` and `N·V`, and 64-bit arithmetic only where a pixel's error bound asks for it
+//! (the bright part of a narrow highlight, a point light's shadow edge). Its cost per frame
+//! on each core is in `docs/performance.md`. Without `full-width` each sphere is tested only
+//! at the pixels its hit test passes (`outline`; on ARMv6-M within its rows and columns, see
+//! there); with it, within each row's outline span (`spans`).
 //!
 //! The full-width kernel, per tested sphere nine 32×32→64-bit products and, on a hit, a square root (seven more, see
 //! `roots`); per lit pixel and light, a normalization (point lights), a shadow test against
@@ -120,9 +118,8 @@
 //! share of the light's cap. Cosines, sines, chords and shares are 30-bit fractions, each
 //! ratio is one integer division (about a dozen per lit pixel and light, more where an
 //! occluder overlaps the light), and the results are the same bits on every target. Against
-//! the scalar path: at most 1 level on five spheres under lights of 0.05 to 1 times their
-//! radius, and 99.99% of pixels within 2 levels on random scenes of every model
-//! (`tests/sphere_lights.rs`). A frame with a sphere light never takes the narrow kernel.
+//! the scalar path, the budgets `tests/sphere_lights.rs` holds (the measured figures are
+//! in `docs/accuracy.md`). A frame with a sphere light never takes the narrow kernel.
 //!
 //! # Modules
 //!

@@ -35,8 +35,8 @@ impl Camera {
     /// 2.8 ulp of the exact tangent of the `f32` input (`tests::tangent_within_its_bound`).
     ///
     /// Why not `libm::tanf(vfov·π/360)`: its general argument reduction (`rem_pio2`, for any
-    /// `f32`) is about 3.9 KB of an M0 firmware's flash, and rounding the argument to radians
-    /// first costs up to 2,846 ulp as `vfov` nears 180°, where the tangent's slope is steep.
+    /// `f32`) costs an M0 firmware kilobytes of flash, and rounding the argument to radians
+    /// first costs thousands of ulp as `vfov` nears 180°, where the tangent's slope is steep.
     /// Here the half angle stays in degrees until it is folded into `0..=45°` (`90° − a`, exact
     /// for `a ≥ 45°`), and one polynomial in `x²` (a least-squares minimax fit of
     /// `(tan x − x)/x³` on `[0, π/4]`, 1.8·10⁻⁸ relative) does the rest; `tan a = 1/tan(90° − a)`
