@@ -131,7 +131,9 @@ use super::narrow_hit::fast_t;
 use super::narrow_lobe::{fast_h, fast_lobe, precise_lobe};
 use super::narrow_roots::{sigma_of, sqrt_q30};
 use super::narrow_scale::{high_bits, mul_u16f16, scale_q15, scale_q16, scale_signed_q16, ONE};
-use super::prepare::{FixedLight, NarrowView, PreparedFixed};
+use super::prepare::{
+    FixedLight, FixedSphere, NarrowLight, NarrowSphere, NarrowView, PreparedFixed,
+};
 use super::quadric::Step;
 use super::vector::{each3, V3};
 use crate::pixel::HitRecord;
@@ -350,6 +352,62 @@ pub(super) fn fast_cosines(
     let g29 = high_bits(g, g_shift);
     let nl = ((scale_signed_q16(g29, sigma2) << 1) - nv * ld) >> 15;
     (nl, ld)
+}
+
+/// The lights' sums at a pixel, as the `lights` stage adds them up: diffuse and specular
+/// (U16F16 per channel, before `kd·albedo` and `ks`), whether either has a term (if not, it
+/// is 0 and adds nothing), and the lights found blocked (bit `k` for light `k`, where asked).
+#[derive(Default)]
+struct Sums {
+    diffuse: [u32; 3],
+    specular: [u32; 3],
+    lit: bool,
+    glossy: bool,
+    shadowed: u32,
+}
+
+impl Sums {
+    /// Adds a light's diffuse and specular sums.
+    #[inline(always)]
+    #[cfg_attr(not(feature = "narrow-precise"), allow(dead_code))]
+    fn add(&mut self, diffuse: [u32; 3], specular: [u32; 3]) {
+        self.diffuse = each3(|c| self.diffuse[c].saturating_add(diffuse[c]));
+        self.specular = each3(|c| self.specular[c].saturating_add(specular[c]));
+        (self.lit, self.glossy) = (true, true);
+    }
+
+    /// Records light `light_index` as blocked, if hits are recorded.
+    #[inline(always)]
+    fn shadow(&mut self, light_index: usize, record_hits: bool) {
+        if record_hits && light_index < 32 {
+            self.shadowed |= 1 << light_index;
+        }
+    }
+
+    /// The `combine` stage: `kd·albedo` times the diffuse sum plus `ks` times the specular
+    /// one, saturated, on sphere `index`.
+    #[inline(always)]
+    fn combine(&self, sphere: &FixedSphere, index: usize) -> Shaded {
+        let diffuse = if self.lit {
+            each3(|c| mul_u16f16(sphere.kd_albedo[c].to_bits(), self.diffuse[c]))
+        } else {
+            [0; 3]
+        };
+        Shaded {
+            color: if self.glossy {
+                each3(|c| {
+                    let s = mul_u16f16(sphere.ks.to_bits(), self.specular[c]);
+                    diffuse[c].saturating_add(s)
+                })
+            } else {
+                diffuse
+            },
+            hit: HitRecord {
+                sphere: Some(index as u16),
+                shadowed: self.shadowed,
+            },
+        }
+    }
 }
 
 /// The states of the first `lights` lights, to move one pixel right; for one or two lights of
@@ -605,14 +663,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         (d, dl): (V3<i32>, &[Step; L]),
         record_hits: bool,
     ) -> Narrow {
-        let Surface {
-            index,
-            e,
-            nv,
-            sigma,
-            sigma2,
-            ..
-        } = *surface;
+        let index = surface.index;
         debug_assert!(index < self.spheres.len(), "hit on sphere {index}");
         let (Some(sphere), Some(lights)) = (self.spheres.get(index), self.narrow_lights.get(index))
         else {
@@ -621,12 +672,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(ns) = sphere.narrow.as_ref() else {
             return Narrow::Precise;
         };
-        let mut diffuse = [0u32; 3];
-        let mut specular = [0u32; 3];
-        // Whether a term was added to `diffuse` or a lobe to `specular`: if not, it is 0 and
-        // adds nothing.
-        let (mut lit, mut glossy) = (false, false);
-        let mut shadowed = 0u32;
+        let mut sums = Sums::default();
         // The normal, for caster tests: made at the first that needs it.
         let mut normal: Option<V3<i32>> = None;
         // Indexed, not zipped: the bound `n ≤ L` lets every index go unchecked, where three
@@ -648,91 +694,111 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                         (g.v, dl.v),
                     );
                     match seen {
-                        PointSeen::Lit(dif, spec) => {
-                            diffuse = each3(|c| diffuse[c].saturating_add(dif[c]));
-                            specular = each3(|c| specular[c].saturating_add(spec[c]));
-                            (lit, glossy) = (true, true);
-                        }
-                        _ => {
-                            if record_hits && light_index < 32 {
-                                shadowed |= 1 << light_index;
-                            }
-                        }
+                        PointSeen::Lit(dif, spec) => sums.add(dif, spec),
+                        _ => sums.shadow(light_index, record_hits),
                     }
                     continue;
                 }
             }
-            let (nl, ld) = fast_cosines(dl.v, (sigma, sigma2, nv), g.v, ns.g_shift as u32);
-            let mut blocked = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
-            if !blocked && light.casters != 0 && nl < light.ahead && (nl * nl) as u32 <= light.reach
-            {
-                let got = if DISTANCE_TEST {
-                    self.distant_casters(light_index, light.casters, (fast_t(ns, nv), d, sigma))
-                } else {
-                    Casters::Left(light.casters)
-                };
-                blocked = match got {
-                    Casters::Blocked => true,
-                    Casters::Left(0) => false,
-                    Casters::Left(left) => {
-                        let n = match normal {
-                            Some(n) => n,
-                            None => *normal.insert(self.narrow_normal(sphere, ns, d, sigma, nv)),
-                        };
-                        self.narrow_blocked(index, n, light_index, left)
-                    }
-                };
-                #[cfg(test)]
-                {
-                    let n = self.narrow_normal(sphere, ns, d, sigma, nv);
-                    let exact = self.narrow_blocked(index, n, light_index, light.casters);
-                    assert_eq!(blocked, exact, "the distance test disagrees with the ray");
-                }
-            }
-            if blocked {
-                if record_hits && light_index < 32 {
-                    shadowed |= 1 << light_index;
-                }
+            let (nl, ld) = fast_cosines(
+                dl.v,
+                (surface.sigma, surface.sigma2, surface.nv),
+                g.v,
+                ns.g_shift as u32,
+            );
+            let at = (light_index, light);
+            if self.distant_shadowed(surface, (sphere, ns), at, (nl, d), &mut normal) {
+                sums.shadow(light_index, record_hits);
                 continue;
             }
-            let arriving = match self.lights.get(light_index) {
-                Some(FixedLight::Distant { arriving, .. }) => arriving.map(|c| c.to_bits()),
-                _ => [0; 3],
-            };
-            if nl > 0 {
-                diffuse = each3(|c| diffuse[c].saturating_add(scale_q15(arriving[c], nl)));
-                lit = true;
-            }
-            let (h, trusted) = fast_h(sphere.blinn(), nl, nv, ld);
-            if h >= ns.cutoff {
-                continue;
-            }
-            let lobe = match fast_lobe(ns, sphere.shininess, h, trusted) {
-                Some(lobe) => lobe,
-                None => precise_lobe(sphere.blinn(), sphere.shininess, ns, e, d, (g.v, dl.v)),
-            };
-            specular = each3(|c| specular[c].saturating_add(scale_q16(arriving[c], lobe)));
-            glossy = true;
+            self.distant_light(surface, (sphere, ns), at, (nl, ld), (d, g, dl), &mut sums);
         }
-        let diffuse = if lit {
-            each3(|c| mul_u16f16(sphere.kd_albedo[c].to_bits(), diffuse[c]))
-        } else {
-            [0; 3]
-        };
-        Narrow::Done(Some(Shaded {
-            color: if glossy {
-                each3(|c| {
-                    let s = mul_u16f16(sphere.ks.to_bits(), specular[c]);
-                    diffuse[c].saturating_add(s)
-                })
+        Narrow::Done(Some(sums.combine(sphere, index)))
+    }
+
+    /// The `shadow` stage of a distant light at `surface`, whose fast `N·L` is `nl`: the
+    /// sphere's own shadow, then the casters the filter of `light` (the sphere's constants for
+    /// light `light_index`) lets through, by the distance test where it serves
+    /// ([`DISTANCE_TEST`]) and the exact ray from the normal (made once per pixel, in
+    /// `normal`) for those it leaves.
+    #[inline(always)]
+    fn distant_shadowed(
+        &self,
+        surface: &Surface,
+        (sphere, ns): (&FixedSphere, &NarrowSphere),
+        (light_index, light): (usize, &NarrowLight),
+        (nl, d): (i32, V3<i32>),
+        normal: &mut Option<V3<i32>>,
+    ) -> bool {
+        let Surface {
+            index, nv, sigma, ..
+        } = *surface;
+        let mut blocked = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
+        if !blocked && light.casters != 0 && nl < light.ahead && (nl * nl) as u32 <= light.reach {
+            let got = if DISTANCE_TEST {
+                self.distant_casters(light_index, light.casters, (fast_t(ns, nv), d, sigma))
             } else {
-                diffuse
-            },
-            hit: HitRecord {
-                sphere: Some(index as u16),
-                shadowed,
-            },
-        }))
+                Casters::Left(light.casters)
+            };
+            blocked = match got {
+                Casters::Blocked => true,
+                Casters::Left(0) => false,
+                Casters::Left(left) => {
+                    let n = match normal {
+                        Some(n) => *n,
+                        None => *normal.insert(self.narrow_normal(sphere, ns, d, sigma, nv)),
+                    };
+                    self.narrow_blocked(index, n, light_index, left)
+                }
+            };
+            #[cfg(test)]
+            {
+                let n = self.narrow_normal(sphere, ns, d, sigma, nv);
+                let exact = self.narrow_blocked(index, n, light_index, light.casters);
+                assert_eq!(blocked, exact, "the distance test disagrees with the ray");
+            }
+        }
+        blocked
+    }
+
+    /// The `diffuse` and `specular` stages of an unshadowed distant light at `surface`, from
+    /// its fast `N·L` and `L·D̂`, into `sums`: the fast lobe where it serves, the precise one
+    /// elsewhere, nothing above the sphere's cutoff.
+    #[inline(always)]
+    fn distant_light(
+        &self,
+        surface: &Surface,
+        (sphere, ns): (&FixedSphere, &NarrowSphere),
+        (light_index, _): (usize, &NarrowLight),
+        (nl, ld): (i32, i32),
+        (d, g, dl): (V3<i32>, &Step, &Step),
+        sums: &mut Sums,
+    ) {
+        let arriving = match self.lights.get(light_index) {
+            Some(FixedLight::Distant { arriving, .. }) => arriving.map(|c| c.to_bits()),
+            _ => [0; 3],
+        };
+        if nl > 0 {
+            sums.diffuse = each3(|c| sums.diffuse[c].saturating_add(scale_q15(arriving[c], nl)));
+            sums.lit = true;
+        }
+        let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);
+        if h >= ns.cutoff {
+            return;
+        }
+        let lobe = match fast_lobe(ns, sphere.shininess, h, trusted) {
+            Some(lobe) => lobe,
+            None => precise_lobe(
+                sphere.blinn(),
+                sphere.shininess,
+                ns,
+                surface.e,
+                d,
+                (g.v, dl.v),
+            ),
+        };
+        sums.specular = each3(|c| sums.specular[c].saturating_add(scale_q16(arriving[c], lobe)));
+        sums.glossy = true;
     }
 
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
