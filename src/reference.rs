@@ -13,7 +13,7 @@
 //! same as the point at the centre) and penumbrae, to measure the paths against when they
 //! render sphere lights too.
 
-use crate::pixel::HitRecord;
+use crate::pixel::{HitRecord, LinearRgb};
 use crate::render::RenderError;
 use crate::scene::{Light, Material, Model, Scene, Surface};
 
@@ -336,28 +336,10 @@ pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
     strata: usize,
 ) -> RefPixel {
     let strata = strata.max(1);
-    let cam = scene.camera();
-    let eye = D3::of(cam.position);
-    let forward = D3::of(cam.look_at).sub(eye).unit();
-    let right = forward.cross(D3::of(cam.up)).unit();
-    let up = right.cross(forward);
-    let tan = libm::tan((cam.vfov_degrees as f64).to_radians() / 2.0);
-    let (w, h) = (width as f64, height as f64);
-    let px = (2.0 * (x as f64 + 0.5) / w - 1.0) * (w / h) * tan;
-    let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * tan;
-    let dir = right.mul(px).add(up.mul(py)).add(forward).unit();
+    let (eye, dir) = primary_ray(scene, width, height, x, y);
     let eps = scene.ray_epsilon() as f64;
-
-    let mut nearest: Option<(usize, f64)> = None;
-    for (k, s) in scene.spheres().iter().enumerate() {
-        if let Some(t) = intersect(eye, dir, D3::of(s.center), s.radius as f64, eps) {
-            if nearest.is_none_or(|(_, best)| t < best) {
-                nearest = Some((k, t));
-            }
-        }
-    }
-    let bg = scene.background();
-    let Some((k, t)) = nearest else {
+    let Some((k, t)) = nearest_hit(scene, eye, dir, eps) else {
+        let bg = scene.background();
         return RefPixel {
             color: [bg.r as f64, bg.g as f64, bg.b as f64],
             hit: HitRecord::default(),
@@ -367,57 +349,18 @@ pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
     let m = &sphere.material;
     let p = eye.add(dir.mul(t));
     let n = p.sub(D3::of(sphere.center)).mul(1.0 / sphere.radius as f64);
-    let v = dir.mul(-1.0);
-    let shadow_origin = p.add(n.mul(eps));
-
-    let mut diffuse = [0.0f64; 3];
-    let mut specular = [0.0f64; 3];
-    // Σ I·f·cos θ_i of the normalized models and Lambert.
-    let mut other = [0.0f64; 3];
+    let at = Surface3 {
+        n,
+        v: dir.mul(-1.0),
+        shadow_origin: p.add(n.mul(eps)),
+        eps,
+    };
+    let mut sums = Sums::default();
     let mut shadowed = 0u32;
     // One arriving direction `l` (unit, toward the light) carrying `arriving`, with a shadow
     // ray of length `t_max`: added to the sums unless a sphere blocks it (then `true`).
     let mut arrive = |l: D3, arriving: [f64; 3], t_max: f64| -> bool {
-        let blocked = scene.spheres().iter().any(|s| {
-            intersect(shadow_origin, l, D3::of(s.center), s.radius as f64, eps)
-                .is_some_and(|ts| ts < t_max)
-        });
-        if blocked {
-            return true;
-        }
-        let n_dot_l = n.dot(l).max(0.0);
-        if !matches!(m.model, Model::Phong | Model::BlinnPhong) {
-            let f = normalized_brdf(m, n, l, v);
-            for c in 0..3 {
-                other[c] += arriving[c] * f[c] * n_dot_l;
-            }
-            return false;
-        }
-        let cosine = match m.model {
-            Model::BlinnPhong => {
-                let hv = l.add(v);
-                if hv.len() > 0.0 {
-                    n.dot(hv.unit())
-                } else {
-                    0.0
-                }
-            }
-            _ => {
-                let travel = l.mul(-1.0);
-                let r = travel.sub(n.mul(2.0 * n.dot(travel)));
-                r.dot(v)
-            }
-        };
-        let lobe = if cosine > 0.0 {
-            libm::pow(cosine.min(1.0), m.shininess as f64)
-        } else {
-            0.0
-        };
-        for c in 0..3 {
-            diffuse[c] += arriving[c] * n_dot_l;
-            specular[c] += arriving[c] * lobe;
-        }
-        false
+        at.arrive(scene, m, &mut sums, (l, arriving, t_max))
     };
     for (li, light) in scene.lights().iter().enumerate() {
         let blocked = match *light {
@@ -445,7 +388,7 @@ pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
                     radius: radius as f64,
                     power,
                 };
-                light.integrate(p, shadow_origin, strata, &mut arrive)
+                light.integrate(p, at.shadow_origin, strata, &mut arrive)
             }
             Light::Point {
                 position,
@@ -453,36 +396,166 @@ pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
                 intensity,
                 ..
             } => {
-                let lv = D3::of(position).sub(p);
-                let dist = lv.len();
-                let scale = intensity as f64 / (4.0 * core::f64::consts::PI * dist * dist);
-                let a = |c: f32| {
-                    let v = c as f64 * scale;
-                    if v.is_nan() || v > ARRIVING_CAP {
-                        ARRIVING_CAP
-                    } else {
-                        v
-                    }
-                };
-                arrive(lv.unit(), [a(color.r), a(color.g), a(color.b)], dist)
+                let (l, arriving, dist) = point_arrival(p, D3::of(position), color, intensity);
+                arrive(l, arriving, dist)
             }
         };
         if blocked && li < 32 {
             shadowed |= 1 << li;
         }
     }
-    let albedo = [m.albedo.r as f64, m.albedo.g as f64, m.albedo.b as f64];
-    let (kd, ks) = (m.kd as f64, m.ks as f64);
-    let mut color = [0.0; 3];
-    for c in 0..3 {
-        color[c] = kd * albedo[c] * diffuse[c] + ks * specular[c] + other[c];
-    }
     RefPixel {
-        color,
+        color: sums.combine(m),
         hit: HitRecord {
             sphere: Some(k as u16),
             shadowed,
         },
+    }
+}
+
+/// The eye and the unit primary direction through the centre of pixel `(x, y)`.
+fn primary_ray<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    width: u32,
+    height: u32,
+    x: u32,
+    y: u32,
+) -> (D3, D3) {
+    let cam = scene.camera();
+    let eye = D3::of(cam.position);
+    let forward = D3::of(cam.look_at).sub(eye).unit();
+    let right = forward.cross(D3::of(cam.up)).unit();
+    let up = right.cross(forward);
+    let tan = libm::tan((cam.vfov_degrees as f64).to_radians() / 2.0);
+    let (w, h) = (width as f64, height as f64);
+    let px = (2.0 * (x as f64 + 0.5) / w - 1.0) * (w / h) * tan;
+    let py = (1.0 - 2.0 * (y as f64 + 0.5) / h) * tan;
+    (eye, right.mul(px).add(up.mul(py)).add(forward).unit())
+}
+
+/// The nearest sphere along the ray and its `t`, the first one winning a tie.
+fn nearest_hit<const S: usize, const L: usize>(
+    scene: &Scene<S, L>,
+    eye: D3,
+    dir: D3,
+    eps: f64,
+) -> Option<(usize, f64)> {
+    let mut nearest: Option<(usize, f64)> = None;
+    for (k, s) in scene.spheres().iter().enumerate() {
+        if let Some(t) = intersect(eye, dir, D3::of(s.center), s.radius as f64, eps) {
+            if nearest.is_none_or(|(_, best)| t < best) {
+                nearest = Some((k, t));
+            }
+        }
+    }
+    nearest
+}
+
+/// A point light's unit direction from `p`, the light arriving there (`I/(4πd²)` per
+/// channel, capped) and its distance.
+fn point_arrival(p: D3, position: D3, color: LinearRgb, intensity: f32) -> (D3, [f64; 3], f64) {
+    let lv = position.sub(p);
+    let dist = lv.len();
+    let scale = intensity as f64 / (4.0 * core::f64::consts::PI * dist * dist);
+    let a = |c: f32| {
+        let v = c as f64 * scale;
+        if v.is_nan() || v > ARRIVING_CAP {
+            ARRIVING_CAP
+        } else {
+            v
+        }
+    };
+    (lv.unit(), [a(color.r), a(color.g), a(color.b)], dist)
+}
+
+/// The hit as the lights see it: the normal, the direction toward the eye, the shadow
+/// rays' origin and the ray epsilon.
+struct Surface3 {
+    n: D3,
+    v: D3,
+    shadow_origin: D3,
+    eps: f64,
+}
+
+/// The lights' sums at a pixel: the classic models' `Σ I·cos θ_i` and `Σ I·lobe`, and the
+/// normalized models' and Lambert's `Σ I·f·cos θ_i`.
+#[derive(Default)]
+struct Sums {
+    diffuse: [f64; 3],
+    specular: [f64; 3],
+    other: [f64; 3],
+}
+
+impl Sums {
+    /// The pixel's colour from the sums and material `m`.
+    fn combine(&self, m: &Material) -> [f64; 3] {
+        let albedo = [m.albedo.r as f64, m.albedo.g as f64, m.albedo.b as f64];
+        let (kd, ks) = (m.kd as f64, m.ks as f64);
+        let mut color = [0.0; 3];
+        for c in 0..3 {
+            color[c] = kd * albedo[c] * self.diffuse[c] + ks * self.specular[c] + self.other[c];
+        }
+        color
+    }
+}
+
+impl Surface3 {
+    /// Adds light arriving along `l` (unit, toward the light) carrying `arriving` to `sums`,
+    /// unless a sphere blocks the shadow ray of length `t_max` (then `true`).
+    fn arrive<const S: usize, const L: usize>(
+        &self,
+        scene: &Scene<S, L>,
+        m: &Material,
+        sums: &mut Sums,
+        (l, arriving, t_max): (D3, [f64; 3], f64),
+    ) -> bool {
+        let (n, v, eps) = (self.n, self.v, self.eps);
+        let blocked = scene.spheres().iter().any(|s| {
+            intersect(
+                self.shadow_origin,
+                l,
+                D3::of(s.center),
+                s.radius as f64,
+                eps,
+            )
+            .is_some_and(|ts| ts < t_max)
+        });
+        if blocked {
+            return true;
+        }
+        let n_dot_l = n.dot(l).max(0.0);
+        if !matches!(m.model, Model::Phong | Model::BlinnPhong) {
+            let f = normalized_brdf(m, n, l, v);
+            for (c, a) in arriving.iter().enumerate() {
+                sums.other[c] += a * f[c] * n_dot_l;
+            }
+            return false;
+        }
+        let cosine = match m.model {
+            Model::BlinnPhong => {
+                let hv = l.add(v);
+                if hv.len() > 0.0 {
+                    n.dot(hv.unit())
+                } else {
+                    0.0
+                }
+            }
+            _ => {
+                let travel = l.mul(-1.0);
+                let r = travel.sub(n.mul(2.0 * n.dot(travel)));
+                r.dot(v)
+            }
+        };
+        let lobe = if cosine > 0.0 {
+            libm::pow(cosine.min(1.0), m.shininess as f64)
+        } else {
+            0.0
+        };
+        for (c, a) in arriving.iter().enumerate() {
+            sums.diffuse[c] += a * n_dot_l;
+            sums.specular[c] += a * lobe;
+        }
+        false
     }
 }
 
