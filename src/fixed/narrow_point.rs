@@ -47,7 +47,7 @@ use super::narrow_scale::ONE;
 use super::narrow_scale::{scale_q15, scale_q16};
 use super::narrow_terms::fast_terms;
 use super::prepare::{FixedLight, FixedSphere, NarrowLight, NarrowSphere, PreparedFixed};
-use super::vector::V3;
+use super::vector::{Len, V3};
 
 /// The margin (in cosine) by which [`NarrowLight::cone`]'s threshold is lowered: many times
 /// the error of the direction it is compared with, which the prepare holds below `2⁻⁹` where
@@ -191,43 +191,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
             Some((h, lobe))
         };
-        if light.casters != 0 {
-            let ray = (position, d, surface.sigma);
-            let left = match self.point_casters(light_index, light, ray, &fast) {
-                Casters::Blocked => {
-                    #[cfg(test)]
-                    assert!(
-                        self.point_shadowed(
-                            surface,
-                            (sphere, ns),
-                            light_index,
-                            d,
-                            (g, dl),
-                            light.casters
-                        ),
-                        "the quick test found blocked a ray that is not"
-                    );
-                    return PointSeen::Blocked;
-                }
-                Casters::Left(left) => left,
-            };
-            #[cfg(test)]
-            assert!(
-                !self.point_shadowed(
-                    surface,
-                    (sphere, ns),
-                    light_index,
-                    d,
-                    (g, dl),
-                    light.casters & !left
-                ),
-                "the quick tests cleared a caster that blocks"
-            );
-            if left != 0
-                && self.point_shadowed(surface, (sphere, ns), light_index, d, (g, dl), left)
-            {
-                return PointSeen::Blocked;
-            }
+        if light.casters != 0
+            && self.fast_point_blocked(
+                surface,
+                (sphere, ns, light),
+                (light_index, position),
+                d,
+                (g, dl),
+                &fast,
+            )
+        {
+            return PointSeen::Blocked;
         }
         let arriving = fast_arriving(power, (fast.y, fast.shift));
         if ns.terms {
@@ -241,6 +215,56 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         };
         let lobe = lobes.map_or(0, |(_, lobe)| lobe);
         PointSeen::Lit(diffuse, arriving.map(|a| scale_q16(a, lobe)))
+    }
+}
+
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// The `shadow` stage of the fast point light (`fast` its geometry at the hit) toward
+    /// point light `light_index` at `position`: the casters' filters
+    /// (`point_casters`), then the precise ray for the casters they leave. Under
+    /// `cfg(test)`, every decision of the filters is asserted against the precise ray.
+    #[inline(always)]
+    fn fast_point_blocked(
+        &self,
+        surface: &Surface,
+        (sphere, ns, light): (&FixedSphere, &NarrowSphere, &NarrowLight),
+        (light_index, position): (usize, &V3<Len>),
+        d: V3<i32>,
+        (g, dl): (i64, i64),
+        fast: &FastPoint,
+    ) -> bool {
+        let ray = (position, d, surface.sigma);
+        let left = match self.point_casters(light_index, light, ray, fast) {
+            Casters::Blocked => {
+                #[cfg(test)]
+                assert!(
+                    self.point_shadowed(
+                        surface,
+                        (sphere, ns),
+                        light_index,
+                        d,
+                        (g, dl),
+                        light.casters
+                    ),
+                    "the quick test found blocked a ray that is not"
+                );
+                return true;
+            }
+            Casters::Left(left) => left,
+        };
+        #[cfg(test)]
+        assert!(
+            !self.point_shadowed(
+                surface,
+                (sphere, ns),
+                light_index,
+                d,
+                (g, dl),
+                light.casters & !left
+            ),
+            "the quick tests cleared a caster that blocks"
+        );
+        left != 0 && self.point_shadowed(surface, (sphere, ns), light_index, d, (g, dl), left)
     }
 }
 

@@ -28,7 +28,9 @@ use super::narrow::Casters;
 use super::narrow_hit::{bit_length, mul_q15};
 #[cfg(feature = "narrow-precise")]
 use super::narrow_point::FastPoint;
-use super::prepare::{FixedLight, NarrowLight, PreparedFixed};
+#[cfg(feature = "narrow-precise")]
+use super::prepare::NarrowLight;
+use super::prepare::{FixedLight, PreparedFixed};
 #[cfg(feature = "narrow-precise")]
 use super::vector::Len;
 use super::vector::{each3, V3};

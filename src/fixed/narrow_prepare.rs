@@ -330,26 +330,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if oc_len2 <= (r + 2 * eps) * (r + 2 * eps) {
             return Err("center");
         }
-        // ⌈log₂ max(1, |ô|²)⌉: below 28, since the scene lies within 2¹³ units and r ≥ 1
-        // unit.
         let r2 = mul_ii(r as i32, r as i32);
-        let ratio = (oc_len2 + r2 - 1).checked_div(r2).unwrap_or(0).max(1) as u64;
-        let log_sq = 64 - (ratio - 1).leading_zeros();
-        let e_shift = 29u32.saturating_sub(log_sq);
-        let g_shift = 28u32.saturating_sub(log_sq.div_ceil(2));
-        // Scale 2^(29 + e_shift)/(r²·2⁵⁸); G's 2^(29 + g_shift)/(r·2⁸⁸).
-        let (e_den, g_den) = (
-            Divisor {
-                d: r as u32,
-                passes: 2,
-                z: 29 - e_shift,
-            },
-            Divisor {
-                d: r as u32,
-                passes: 1,
-                z: 59 - g_shift,
-            },
-        );
+        let (e_shift, g_shift, e_den, g_den) = quadric_scales(oc_len2, r2, r);
         // The quadrics over D = dc + x·sx + y·sy, expanded at the centre of the screen
         // (`dx = dy = 0`), from b = oc·D in each direction (see `Form`).
         let oc32 = eye_offset.map(|c| c.to_bits());
@@ -358,24 +340,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if quadric((r2 - oc_len2, gram, &b), Form::E, &e_den, &mut e).is_none() {
             return Err("radius");
         }
-        if self
-            .narrow_lights
-            .push([NarrowLight::default(); L])
-            .is_err()
-        {
-            return Err("radius");
-        }
-        for light_index in 0..self.lights.len().min(L) {
-            let light = self.narrow_light(scene, i, light_index, (view, gram, &b), &g_den)?;
-            match self
-                .narrow_lights
-                .get_mut(i)
-                .and_then(|l| l.get_mut(light_index))
-            {
-                Some(slot) => *slot = light,
-                None => return Err("center"),
-            }
-        }
+        self.prepare_sphere_lights(scene, i, (view, gram, &b), &g_den)?;
+        let s = self.spheres.get(i).ok_or("center")?;
         let bits = 64 - r.leading_zeros();
         let (rf, ef) = (r as f32, eps as f32);
         // The lobes' scale and exponents: `ks` and `n` for the classic models; for the
@@ -395,26 +361,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             0 if terms => 1,
             max => max,
         };
-        // c = |ô|² − 1 = (|oc|² − r²)/r², from the exact difference.
-        let c = (oc_len2 - r2) as f32 / r2 as f32;
-        let mut c_shift = 0u8;
-        while c_shift < 15 && 1.0 + c > (1u64 << (2 * c_shift)) as f32 {
-            c_shift += 1;
-        }
-        let t_num = Exact::from_f32((oc_len2 - r2) as f32 / r as f32);
+        let (c_q30, c_shift, t_num) = hit_constants(oc_len2, r2, r);
         #[cfg(feature = "narrow-precise")]
-        for light_index in 0..self.lights.len().min(L) {
-            let (fast, ratio, slack) = self.point_fast(i, light_index, (n_high, scale));
-            if let Some(l) = self
-                .narrow_lights
-                .get_mut(i)
-                .and_then(|l| l.get_mut(light_index))
-            {
-                (l.point_fast, l.point_ratio, l.point_slack) = (fast, ratio, slack);
-            }
-        }
+        self.prepare_point_fast(i, (n_high, scale));
         let narrow = NarrowSphere {
-            c_q30: (c * (1u64 << (30 - 2 * c_shift)) as f32).min((1u32 << 30) as f32) as u32,
+            c_q30,
             c_shift,
             t_mantissa: (t_num.mantissa >> 8) as u16,
             // r·c is at least ε (1 raw unit) and below 2⁶²: an exponent in −15..=47.
@@ -442,6 +393,52 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             None => return Err("center"),
         }
         Ok(())
+    }
+
+    /// Sphere `i`'s constants for each light (`narrow_light`), pushed as its entry of
+    /// `narrow_lights`.
+    fn prepare_sphere_lights(
+        &mut self,
+        scene: &Scene<S, L>,
+        i: usize,
+        geometry: (&NarrowView, &[i64; 6], &[i64; 3]),
+        g_den: &Divisor,
+    ) -> Result<(), &'static str> {
+        if self
+            .narrow_lights
+            .push([NarrowLight::default(); L])
+            .is_err()
+        {
+            return Err("radius");
+        }
+        for light_index in 0..self.lights.len().min(L) {
+            let light = self.narrow_light(scene, i, light_index, geometry, g_den)?;
+            match self
+                .narrow_lights
+                .get_mut(i)
+                .and_then(|l| l.get_mut(light_index))
+            {
+                Some(slot) => *slot = light,
+                None => return Err("center"),
+            }
+        }
+        Ok(())
+    }
+
+    /// Sphere `i`'s fast point light limits for each light (`point_fast`), from the lobes'
+    /// largest exponent and their scale.
+    #[cfg(feature = "narrow-precise")]
+    fn prepare_point_fast(&mut self, i: usize, lobes: (f32, f32)) {
+        for light_index in 0..self.lights.len().min(L) {
+            let (fast, ratio, slack) = self.point_fast(i, light_index, lobes);
+            if let Some(l) = self
+                .narrow_lights
+                .get_mut(i)
+                .and_then(|l| l.get_mut(light_index))
+            {
+                (l.point_fast, l.point_ratio, l.point_slack) = (fast, ratio, slack);
+            }
+        }
     }
 
     /// A raw point `p`'s offset from the eye across light `light`, `(p − eye)·u` and
@@ -749,6 +746,45 @@ fn point_casters<const S: usize, const L: usize>(
 /// crate's own tests turn it on everywhere, to hold it to changing no pixel.
 pub(crate) const QUICK_CASTER_TEST: bool =
     cfg!(any(shadeline_short_mul, target_arch = "riscv32", test));
+
+/// The quadrics' scales of a sphere of radius `r` (raw, `r2 = r²`) whose centre is `|oc|²`
+/// (raw²) from the eye: `E′`'s shift to Q29 and `G`'s, from `⌈log₂ max(1, |ô|²)⌉` (below
+/// 28, since the scene lies within 2¹³ units and `r ≥ 1` unit), and their divisors: `E′`'s
+/// scale `2^(29 + e_shift)/(r²·2⁵⁸)`, `G`'s `2^(29 + g_shift)/(r·2⁸⁸)`.
+fn quadric_scales(oc_len2: i64, r2: i64, r: i64) -> (u32, u32, Divisor, Divisor) {
+    let ratio = (oc_len2 + r2 - 1).checked_div(r2).unwrap_or(0).max(1) as u64;
+    let log_sq = 64 - (ratio - 1).leading_zeros();
+    let e_shift = 29u32.saturating_sub(log_sq);
+    let g_shift = 28u32.saturating_sub(log_sq.div_ceil(2));
+    let divisor = |passes, z| Divisor {
+        d: r as u32,
+        passes,
+        z,
+    };
+    (
+        e_shift,
+        g_shift,
+        divisor(2, 29 - e_shift),
+        divisor(1, 59 - g_shift),
+    )
+}
+
+/// The fast `t`'s constants of a sphere of radius `r` (raw) whose centre is `|oc|²` (raw²)
+/// from the eye, `r2` being `r²`: `c = |ô|² − 1 = (|oc|² − r²)/r²` (from the exact
+/// difference) in Q30 after `c_shift` halvings of `√(1 + c)`, the shift, and `r·c`.
+fn hit_constants(oc_len2: i64, r2: i64, r: i64) -> (u32, u8, Exact) {
+    let c = (oc_len2 - r2) as f32 / r2 as f32;
+    let mut c_shift = 0u8;
+    while c_shift < 15 && 1.0 + c > (1u64 << (2 * c_shift)) as f32 {
+        c_shift += 1;
+    }
+    let c_q30 = (c * (1u64 << (30 - 2 * c_shift)) as f32).min((1u32 << 30) as f32) as u32;
+    (
+        c_q30,
+        c_shift,
+        Exact::from_f32((oc_len2 - r2) as f32 / r as f32),
+    )
+}
 
 /// Two unit vectors across the unit vector `l` (Q30), in Q15: `u = (l × e)/|l × e|` for the
 /// axis `e` least along `l` (so `|l × e|² ≥ 2/3`), and `v = l × u`. Each is within `2⁻¹⁵`
