@@ -129,7 +129,9 @@
 //! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within screen
 //! rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
 //! without `full-width`) · `row` (the row driver) · `narrow` (the 16-bit kernel and when it
-//! applies) · `kernel` (the full-width kernel's stages, feature `full-width`) · `edges`
+//! applies) · `kernel` (the full-width kernel's stages, feature `full-width`; its `incoming`
+//! in `kernel_light`, its sphere lights' stages in `kernel_sphere` and the Oren–Nayar and GGX
+//! terms in `kernel_models`) · `edges`
 //! (anti-aliased silhouettes, features `antialias` and `full-width`) · `area` (sphere lights'
 //! closed forms, features `area-lights` and `full-width`) · `pow` (the lobe) · `roots` (`√x`,
 //! `1/√x`) · `quadric` (the narrow kernel's exact quadrics and their steps) · `vector` (dot
@@ -144,6 +146,12 @@ mod edges;
 mod exact;
 #[cfg(feature = "full-width")]
 mod kernel;
+#[cfg(feature = "full-width")]
+mod kernel_light;
+#[cfg(all(feature = "models", feature = "full-width"))]
+mod kernel_models;
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+mod kernel_sphere;
 mod mul;
 mod narrow;
 mod narrow_hit;
