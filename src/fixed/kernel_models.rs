@@ -7,7 +7,7 @@
 
 use super::exact::shift_saturating;
 use super::mul::{leading_zeros, mul_ii, mul_uu};
-use super::prepare::FixedGgx;
+use super::prepare_ggx::FixedGgx;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{dot_unit, Unit, V3};
 

@@ -126,7 +126,9 @@
 //!
 //! # Modules
 //!
-//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within screen
+//! `prepare` (scene → formats, the refusals; its stages' parts in `prepare_plane`, the
+//! camera's plane and size checks, `prepare_convert`, the checked conversions and the
+//! range limits, and `prepare_ggx`, GGX's constants) · `spans` (each row's outline spans within screen
 //! rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
 //! without `full-width`) · `row` (the row driver) · `narrow` (the 16-bit kernel and when it
 //! applies) · `kernel` (the full-width kernel's stages, feature `full-width`; its `incoming`
@@ -173,6 +175,10 @@ mod narrow_terms;
 mod outline;
 mod pow;
 mod prepare;
+mod prepare_convert;
+#[cfg(feature = "models")]
+mod prepare_ggx;
+mod prepare_plane;
 mod quadric;
 mod roots;
 mod row;
@@ -180,4 +186,5 @@ mod row;
 mod spans;
 mod vector;
 
-pub use prepare::{PreparedFixed, MAX_LEVEL, MAX_PLANE_SCALE, MIN_SCALED_RADIUS};
+pub use prepare::PreparedFixed;
+pub use prepare_convert::{MAX_LEVEL, MAX_PLANE_SCALE, MIN_SCALED_RADIUS};
