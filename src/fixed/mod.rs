@@ -128,8 +128,8 @@
 //!
 //! `prepare` (scene → formats, the refusals; its stages' parts in `prepare_plane`, the
 //! camera's plane and size checks, `prepare_convert`, the checked conversions and the
-//! range limits, and `prepare_ggx`, GGX's constants) · `spans` (each row's outline spans within screen
-//! rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
+//! range limits, and `prepare_ggx`, GGX's constants) · `spans` (each row's outline spans
+//! within screen rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
 //! without `full-width`) · `row` (the row driver) · `narrow` (the 16-bit kernel and when it
 //! applies) · `kernel` (the full-width kernel's stages, feature `full-width`; its `incoming`
 //! in `kernel_light`, its sphere lights' stages in `kernel_sphere` and the Oren–Nayar and GGX
