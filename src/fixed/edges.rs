@@ -372,7 +372,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The front outline within reach of the centre of pixel `x` (centre ray `u`, unit
     /// `d`), behind which the nearest sphere is `hit` (sphere, distance; `None`: none),
-    /// among the spheres whose span covers `x` but `exclude`.
+    /// among the spheres whose span covers `x` but `exclude`: the nearest outline
+    /// (`front_outline`), its outward normal, the pixel's coverage, and the ray pulled
+    /// inside it (`pulled_inside`).
     #[allow(clippy::too_many_arguments)]
     fn edge(
         &self,
@@ -383,6 +385,39 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         x: u32,
         spans: &[Option<Span>],
     ) -> Option<Edge> {
+        let Candidate {
+            sphere,
+            inside,
+            dist,
+            h,
+            ..
+        } = self.front_outline(view, d, hit, exclude, x, spans)?;
+        let normal = outline_normal(h)?;
+        let coverage = square_coverage(dist, normal.0, normal.1);
+        let pulled = pulled_inside(view, u, dist, coverage, normal);
+        Some(Edge {
+            sphere,
+            inside,
+            coverage,
+            dist,
+            normal,
+            pulled,
+        })
+    }
+
+    /// The nearest outline in front of `hit` within reach of pixel `x`'s centre, along the
+    /// unit ray `d`, among the spheres whose span covers `x` but `exclude`: the first stage
+    /// of [`Self::edge`].
+    #[inline(always)]
+    fn front_outline(
+        &self,
+        view: &EdgeRow<S>,
+        d: V3<Unit>,
+        hit: Option<(usize, i64)>,
+        exclude: Option<usize>,
+        x: u32,
+        spans: &[Option<Span>],
+    ) -> Option<Candidate> {
         // 1/|u| in Q30, in (0, 1].
         let c = dot_unit(d, view.forward).clamp(1, 1 << 30) as u32;
         let hit_t = hit.map_or(i64::MAX, |(_, t)| t);
@@ -428,43 +463,46 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 });
             }
         }
-        let Candidate {
-            sphere,
-            inside,
-            dist,
-            h: (hx, hy),
-            ..
-        } = best?;
-        // The outward normal, Q16: h/|h| from 30-bit mantissas.
-        let top = bits(hx.unsigned_abs().max(hy.unsigned_abs())).saturating_sub(30);
-        let (mx, my) = ((hx >> top) as i32, (hy >> top) as i32);
-        let (y, shift) = inv_sqrt(mul_ii(mx, mx) as u64 + mul_ii(my, my) as u64)?;
-        let unit = |m: i32| mul_iu(m, y) >> (shift - 16);
-        let normal = (unit(mx), unit(my));
-        let coverage = square_coverage(dist, normal.0, normal.1);
-        // The point c/2 inside the outline: a step of −(dist + c/2)·normal pixels.
-        let back = dist + coverage / 2;
-        let delta = (-((back * normal.0) >> 16), -((back * normal.1) >> 16));
-        let [right, up] = &view.steps;
-        let along = |d: i64, s: i32| {
-            shift_signed(
-                mul_ii(d.clamp(-4 * ONE, 4 * ONE) as i32, s),
-                16 - view.shift as i32,
-            )
-        };
-        let pulled = each3(|i| {
-            let v = u[i].to_bits().saturating_add(along(delta.0, right[i]));
-            I16F48::from_bits(v.saturating_add(along(delta.1, up[i])))
-        });
-        Some(Edge {
-            sphere,
-            inside,
-            coverage,
-            dist,
-            normal,
-            pulled,
-        })
+        best
     }
+}
+
+/// The outline's outward normal in Q16 pixels, `h/|h|` from 30-bit mantissas of
+/// `h = (f·S_x, f·S_y)`.
+#[inline(always)]
+fn outline_normal((hx, hy): (i64, i64)) -> Option<(i64, i64)> {
+    let top = bits(hx.unsigned_abs().max(hy.unsigned_abs())).saturating_sub(30);
+    let (mx, my) = ((hx >> top) as i32, (hy >> top) as i32);
+    let (y, shift) = inv_sqrt(mul_ii(mx, mx) as u64 + mul_ii(my, my) as u64)?;
+    let unit = |m: i32| mul_iu(m, y) >> (shift - 16);
+    Some((unit(mx), unit(my)))
+}
+
+/// The centre ray `u` pulled inside the outline, for the shading of its sphere alone: moved
+/// by `−(dist + coverage/2)·normal` pixels along the row's steps, to the point half the
+/// pixel's coverage inside the outline.
+#[inline(always)]
+fn pulled_inside<const S: usize>(
+    view: &EdgeRow<S>,
+    u: V3<I16F48>,
+    dist: i64,
+    coverage: i64,
+    normal: (i64, i64),
+) -> V3<I16F48> {
+    // The point c/2 inside the outline: a step of −(dist + c/2)·normal pixels.
+    let back = dist + coverage / 2;
+    let delta = (-((back * normal.0) >> 16), -((back * normal.1) >> 16));
+    let [right, up] = &view.steps;
+    let along = |d: i64, s: i32| {
+        shift_signed(
+            mul_ii(d.clamp(-4 * ONE, 4 * ONE) as i32, s),
+            16 - view.shift as i32,
+        )
+    };
+    each3(|i| {
+        let v = u[i].to_bits().saturating_add(along(delta.0, right[i]));
+        I16F48::from_bits(v.saturating_add(along(delta.1, up[i])))
+    })
 }
 
 /// The signed distance in Q16 pixels from a pixel's centre to a sphere's outline,

@@ -123,10 +123,14 @@
 //!
 //! # Modules
 //!
-//! `prepare` (scene → formats, the refusals) · `spans` (each row's outline spans within screen
-//! rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
+//! `prepare` (scene → formats, the refusals; its stages' parts in `prepare_plane`, the
+//! camera's plane and size checks, `prepare_convert`, the checked conversions and the
+//! range limits, and `prepare_ggx`, GGX's constants) · `spans` (each row's outline spans
+//! within screen rectangles, feature `full-width`) · `outline` (exact spans from the narrow kernel's quadric,
 //! without `full-width`) · `row` (the row driver) · `narrow` (the 16-bit kernel and when it
-//! applies) · `kernel` (the full-width kernel's stages, feature `full-width`) · `edges`
+//! applies) · `kernel` (the full-width kernel's stages, feature `full-width`; its `incoming`
+//! in `kernel_light`, its sphere lights' stages in `kernel_sphere` and the Oren–Nayar and GGX
+//! terms in `kernel_models`) · `edges`
 //! (anti-aliased silhouettes, features `antialias` and `full-width`) · `area` (sphere lights'
 //! closed forms, features `area-lights` and `full-width`) · `pow` (the lobe) · `roots` (`√x`,
 //! `1/√x`) · `quadric` (the narrow kernel's exact quadrics and their steps) · `vector` (dot
@@ -141,6 +145,12 @@ mod edges;
 mod exact;
 #[cfg(feature = "full-width")]
 mod kernel;
+#[cfg(feature = "full-width")]
+mod kernel_light;
+#[cfg(all(feature = "models", feature = "full-width"))]
+mod kernel_models;
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+mod kernel_sphere;
 mod mul;
 mod narrow;
 mod narrow_hit;
@@ -162,6 +172,10 @@ mod narrow_terms;
 mod outline;
 mod pow;
 mod prepare;
+mod prepare_convert;
+#[cfg(feature = "models")]
+mod prepare_ggx;
+mod prepare_plane;
 mod quadric;
 mod roots;
 mod row;
@@ -169,4 +183,5 @@ mod row;
 mod spans;
 mod vector;
 
-pub use prepare::{PreparedFixed, MAX_LEVEL, MAX_PLANE_SCALE, MIN_SCALED_RADIUS};
+pub use prepare::PreparedFixed;
+pub use prepare_convert::{MAX_LEVEL, MAX_PLANE_SCALE, MIN_SCALED_RADIUS};

@@ -11,11 +11,20 @@
 //! [`RenderError::OutOfFixedRange`] naming the item and field); compute each sphere's screen
 //! rectangle (`spans`, with the full-width kernel); then, for a frame the narrow kernel
 //! takes, its constants ([`super::narrow_prepare`]: the exact quadrics, the caster filters
-//! and, without the full-width kernel, each sphere's rows and columns).
+//! and, without the full-width kernel, each sphere's rows and columns). The stages are
+//! `Plane::of` (`prepare_plane`), `fixed_sphere` and `fixed_light` (with the checked
+//! conversions of `prepare_convert` and GGX's constants in `prepare_ggx`), and
+//! `prepare_casters`.
 
-use super::convert::{fixed_bits, fixed_bits_i32, fixed_bits_u32};
+use super::convert::{fixed_bits_i32, fixed_bits_u32};
 use super::exact::Exact;
-use super::mul::{dot_ii, mul_ii};
+use super::prepare_convert::MIN_SCALED_RADIUS;
+use super::prepare_convert::{
+    out_of_range, pow2, scale_log2, small_beside_extent, to_len, to_levels, to_wide, unit_q30,
+};
+#[cfg(feature = "models")]
+use super::prepare_ggx::FixedGgx;
+use super::prepare_plane::Plane;
 use super::quadric::Quadric;
 #[cfg(feature = "full-width")]
 use super::roots::inv_sqrt;
@@ -26,25 +35,9 @@ use crate::brdf::{Params, BLINN_PHONG, LOBES};
 use crate::render::{Kernel, RenderError};
 #[cfg(not(feature = "full-width"))]
 use crate::scene::Model;
-use crate::scene::{Item, Light, Scene, MORE_LOBES};
+use crate::scene::{Item, Light, Material, Scene, Sphere, MORE_LOBES};
 use crate::vec3::Vec3;
-use crate::MAX_DIMENSION;
 use fixed::types::{I16F48, I32F32, U16F16};
-
-/// The scene is scaled by a power of two so that its extent is below `2^EXTENT_LOG2` units.
-pub(crate) const EXTENT_LOG2: i32 = 13;
-/// The largest scale, `2¹⁹`: keeps the ray epsilon (`10⁻⁴` for scenes smaller than one unit)
-/// below 64 units.
-pub(crate) const MAX_SCALE_LOG2: i32 = 19;
-
-/// Smallest sphere radius after scaling, in units (`2¹⁶` raw I16F16 steps): normals then
-/// carry at least 16 bits. In scene terms: a radius at least `2⁻¹³` of the scene's extent.
-pub const MIN_SCALED_RADIUS: f32 = 1.0;
-/// Largest `tan(vfov/2)·max(1, width/height)`: keeps primary-ray directions within ±256.
-pub const MAX_PLANE_SCALE: f32 = 127.0;
-/// Largest `kd·albedo`, `ks` and distant-light `colour·intensity` per channel: they are
-/// U16F16 and two of them multiply and add without wrapping.
-pub const MAX_LEVEL: f32 = 32_767.0;
 
 /// The primary directions of a frame in narrow form: `D = forward + dy·step_y + dx·step_x`
 /// with `dx = 2x + 1 − w` and `dy = h − 2y − 1`, integer vectors with `|D| < 2³⁰`.
@@ -252,22 +245,6 @@ impl FixedSphere {
     }
 }
 
-/// A GGX sphere's constants (`α = roughness²`).
-#[cfg(feature = "models")]
-#[derive(Clone, Copy, Debug)]
-#[cfg_attr(not(feature = "full-width"), allow(dead_code))]
-pub(crate) struct FixedGgx {
-    /// `α²`, U1F31.
-    pub alpha2: u32,
-    /// `1 − α²`, U1F31.
-    pub one_minus_alpha2: u32,
-    /// `ks·α²/(2π)`, the `f32` value exactly.
-    pub scale: Exact,
-    /// `α`, U1F31, for the widening under a sphere light.
-    #[cfg(all(feature = "area-lights", feature = "full-width"))]
-    pub alpha: u32,
-}
-
 /// A light's per-frame constants.
 #[derive(Clone, Copy, Debug)]
 pub(crate) enum FixedLight {
@@ -347,123 +324,168 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) antialias: bool,
 }
 
-/// A lobe's constants for `area::lobe_widening`, from its exponent `n` (`n′ = n`, or `n/4`
-/// for Blinn-Phong): `[√(πn′/2)` in U16F16, `n′/2` in U20F12`]`, saturating (0 for `n = 0`).
-#[cfg(all(feature = "area-lights", feature = "full-width"))]
-fn widening(n: f32, blinn: bool) -> [u32; 2] {
-    let n = if blinn { n * 0.25 } else { n };
-    let a = libm::sqrtf(core::f32::consts::FRAC_PI_2 * n);
-    [fixed_bits_u32(a, 16), fixed_bits_u32(0.5 * n, 12)].map(|b| b.unwrap_or(u32::MAX))
-}
-
-fn out_of_range(item: Item, field: &'static str) -> RenderError {
-    RenderError::OutOfFixedRange {
-        item,
-        field,
-        beside: None,
-    }
-}
-
-/// The refusal of sphere `sphere`, whose radius is below `2⁻¹³` of the scene's extent: it also
-/// names the largest sphere (a floor sphere, say) when that is another and reaches at least
-/// half as far as the camera, so that its size is what sets the extent. In integers: a
-/// finite `f32`'s magnitude orders as its bits, and doubling it adds `2²³` to them. Out of
-/// line: only refused scenes reach it.
-#[inline(never)]
-fn small_beside_extent<const S: usize, const L: usize>(
+/// Sphere `i` of `scene`, `s`, converted and checked: its centre and radius times `scale`,
+/// its offset from the scaled `eye`, its material's constants and, with the full-width
+/// kernel, its spans in `view`.
+#[inline(always)]
+fn fixed_sphere<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
-    sphere: usize,
-) -> RenderError {
-    let magnitude = |v: f32| v.to_bits() & 0x7fff_ffff;
-    let eye = scene.camera().position;
-    let camera = magnitude(eye.x).max(magnitude(eye.y)).max(magnitude(eye.z));
-    let (mut largest, mut beside) = (0, None);
-    for (i, s) in scene.spheres().iter().enumerate() {
-        if magnitude(s.radius) > largest {
-            largest = magnitude(s.radius);
-            beside = u16::try_from(i).ok();
+    i: usize,
+    s: &Sphere,
+    scale: f32,
+    eye: V3<Len>,
+    #[cfg(feature = "full-width")] view: &View,
+) -> Result<FixedSphere, RenderError> {
+    let item = Item::Sphere(i);
+    let m = &s.material;
+    let center = to_len(s.center, scale, item, "center")?;
+    let radius = fixed_bits_i32(s.radius * scale, 16)
+        .map(Len::from_bits)
+        .ok_or(out_of_range(item, "radius"))?;
+    if radius < MIN_SCALED_RADIUS {
+        return Err(small_beside_extent(scene, i));
+    }
+    let radius_raw = radius.to_bits() as i64;
+    #[cfg(feature = "full-width")]
+    let inv_radius =
+        inv_sqrt((radius_raw * radius_raw) as u64).ok_or(out_of_range(item, "radius"))?;
+    let params = material_params(m, item)?;
+    let kd_albedo = params.kd_albedo;
+    let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
+    let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
+    let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
+    Ok(FixedSphere {
+        center,
+        eye_offset: each3(|c| eye[c] - center[c]),
+        radius_sq: I32F32::from_bits(radius_raw * radius_raw),
+        #[cfg(feature = "full-width")]
+        inv_radius,
+        kd_albedo,
+        ks,
+        shininess: Exact::from_f32(m.shininess),
+        blinn: params.blinn > 0.0,
+        normalized: params.normalized > 0.0,
+        weight: params.weight.map(Exact::from_f32),
+        more_shininess: params.more_shininess.map(Exact::from_f32),
+        f0: [params.f0.x, params.f0.y, params.f0.z].map(unit),
+        schlick: params.schlick > 0.0,
+        diffuse_loss: params.diffuse_loss > 0.0,
+        #[cfg(feature = "full-width")]
+        bounds: view.bounds(s.center, s.radius),
+        narrow: None,
+        #[cfg(feature = "models")]
+        oren_nayar: (params.oren_nayar > 0.0).then(|| [unit(params.on_a), unit(params.on_b)]),
+        #[cfg(feature = "models")]
+        ggx: (params.ggx > 0.0).then(|| FixedGgx::of(&params)),
+        radius,
+        #[cfg(all(feature = "area-lights", feature = "full-width"))]
+        widening: widenings(m.shininess, &params),
+    })
+}
+
+/// The float paths' constants of material `m` (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1
+/// for the normalized models; normalization factors; F₀), which the fixed formats are
+/// converted from.
+#[cfg(feature = "full-width")]
+#[inline(always)]
+fn material_params(m: &Material, _item: Item) -> Result<Params<f32>, RenderError> {
+    Ok(Params::<f32>::of(m))
+}
+
+/// The float paths' constants of material `m`, as with the full-width kernel, for the
+/// classic models only: without it the others are refused here, before their constants
+/// are computed (and their code is linked).
+#[cfg(not(feature = "full-width"))]
+#[inline(always)]
+fn material_params(m: &Material, item: Item) -> Result<Params<f32>, RenderError> {
+    match m.model {
+        Model::OrenNayar { .. } | Model::Ggx(_) => Err(RenderError::NeedsFullWidth {
+            item,
+            field: "model",
+        }),
+        _ => Ok(Params::<f32>::of(m)),
+    }
+}
+
+/// Light `item` of the scene, `l`, converted and checked: a distant light's direction and
+/// arriving levels, a point light's position times `scale = 2^k` and its power times the
+/// scale squared, and with `area-lights` a sphere light's scaled radius.
+#[inline(always)]
+fn fixed_light(item: Item, l: &Light, scale: f32, k: i32) -> Result<FixedLight, RenderError> {
+    Ok(match *l {
+        Light::Distant {
+            direction,
+            color,
+            intensity,
+        } => {
+            let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
+            // Validated: a scene's light direction is finite and not zero.
+            let d = (-direction)
+                .normalized()
+                .ok_or(out_of_range(item, "direction"))?;
+            FixedLight::Distant {
+                to_light: unit_q30(d),
+                arriving: to_levels([arriving.x, arriving.y, arriving.z], item, "intensity")?,
+            }
         }
-    }
-    if beside.map(usize::from) == Some(sphere) || largest + (1 << 23) < camera {
-        beside = None;
-    }
-    RenderError::OutOfFixedRange {
-        item: Item::Sphere(sphere),
-        field: "radius",
-        beside,
-    }
+        // The narrow kernel renders point lights of radius 0 only.
+        #[cfg(not(feature = "full-width"))]
+        Light::Point { radius, .. } if radius > 0.0 => {
+            return Err(RenderError::NeedsFullWidth {
+                item,
+                field: "radius",
+            })
+        }
+        Light::Point {
+            position,
+            color,
+            intensity,
+            radius,
+        } => {
+            let power = Vec3::new(color.r, color.g, color.b)
+                .scale(intensity / (4.0 * core::f32::consts::PI))
+                .scale(pow2(2 * k));
+            let power = [power.x, power.y, power.z];
+            if !power.iter().all(|p| p.is_finite()) {
+                return Err(out_of_range(item, "intensity"));
+            }
+            let position = to_len(position, scale, item, "position")?;
+            let power = power.map(Exact::from_f32);
+            #[cfg(feature = "area-lights")]
+            if radius > 0.0 {
+                let radius = fixed_bits_i32(radius * scale, 16)
+                    .filter(|r| *r > 0)
+                    .map(Len::from_bits)
+                    .ok_or(out_of_range(item, "radius"))?;
+                return Ok(FixedLight::Sphere {
+                    position,
+                    power,
+                    radius,
+                });
+            }
+            let _ = radius;
+            FixedLight::Point { position, power }
+        }
+    })
 }
 
-/// `v·scale` per component in fixed point with `frac` fraction bits ([`fixed_bits`]), if
-/// each is within `lo..=hi`. Out of line: every point, colour and direction of the prepare
-/// goes through it.
-#[inline(never)]
-fn scaled_bits(v: [f32; 3], scale: f32, frac: u32, (lo, hi): (i64, i64)) -> Option<[i64; 3]> {
-    let mut out = [0i64; 3];
-    for (o, c) in out.iter_mut().zip(v) {
-        *o = fixed_bits(c * scale, frac).filter(|b| (lo..=hi).contains(b))?;
-    }
-    Some(out)
-}
-
-fn to_len(v: Vec3, scale: f32, item: Item, field: &'static str) -> Result<V3<Len>, RenderError> {
-    let range = (i32::MIN as i64, i32::MAX as i64);
-    scaled_bits([v.x, v.y, v.z], scale, 16, range)
-        .map(|b| b.map(|c| Len::from_bits(c as i32)))
-        .ok_or(out_of_range(item, field))
-}
-
-fn to_wide(v: Vec3, scale: f32) -> Result<V3<I16F48>, RenderError> {
-    scaled_bits([v.x, v.y, v.z], scale, 48, (i64::MIN, i64::MAX))
-        .map(|b| b.map(I16F48::from_bits))
-        .ok_or(out_of_range(Item::Camera, "vfov"))
-}
-
-/// The I2F30 unit vector of `d`, a unit vector in `f32` (within `2⁻²³` of unit length):
-/// its components rounded to 30 bits (each at most about 1, which I2F30 holds: no
-/// saturation is needed, and a component that did not convert, which no unit vector has,
-/// would read as 0), then one Newton step toward unit length, `v·(1 − ε/2)` for
-/// `|v|² = 1 + ε`, which leaves it within `2⁻⁴⁰` of unit length before the components'
-/// rounding. Exact integer arithmetic after the conversion, so the same bits on every
-/// target; a few products instead of the general normalization, for a vector already
-/// within a few ulps of unit length. Inlined on ARMv6-M, where its caller is too (see
-/// `prepare_fields`): smaller there.
-#[cfg_attr(shadeline_short_mul, inline(always))]
-#[cfg_attr(not(shadeline_short_mul), inline(never))]
-fn unit_q30(d: Vec3) -> V3<Unit> {
-    let v = [d.x, d.y, d.z].map(|c| fixed_bits_i32(c, 30).unwrap_or(0));
-    let len2 = dot_ii(v, v);
-    // ε = |v|² − 1 in Q60 (|ε| < 2⁻²¹: the f32 vector's rounding and the 30-bit one), then
-    // ε/2 in Q51, which holds |ε| < 2⁻²⁰ in an i32; c·ε/2 is then below 2⁶⁰.
-    let half_eps = ((len2 - (1 << 60)) >> 10).clamp(-(1 << 30), 1 << 30) as i32;
-    // |c·ε/2| < 2¹⁰ and |c| ≤ 2³⁰: the difference fits I2F30.
-    v.map(|c| Unit::from_bits(c - (mul_ii(c, half_eps) >> 51) as i32))
-}
-
-/// Per-channel levels checked against [`MAX_LEVEL`]: U16F16 bits up to `MAX_LEVEL·2¹⁶`,
-/// which is where the `f32` levels up to `MAX_LEVEL` round to (the next `f32` above it,
-/// `MAX_LEVEL + 2⁻⁹`, rounds above). A scene's colours and factors are checked
-/// non-negative, and so are their products; a negative level is refused all the same,
-/// unless it rounds to zero.
-fn to_levels(c: [f32; 3], item: Item, field: &'static str) -> Result<V3<U16F16>, RenderError> {
-    const MAX_BITS: i64 = (MAX_LEVEL as i64) << 16;
-    scaled_bits(c, 1.0, 16, (0, MAX_BITS))
-        .map(|b| b.map(|c| U16F16::from_bits(c as u32)))
-        .ok_or(out_of_range(item, field))
-}
-
-/// `2^k` as an `f32`, for `k` in `-126..=127`.
-fn pow2(k: i32) -> f32 {
-    f32::from_bits(((k + 127).clamp(1, 254) as u32) << 23)
-}
-
-/// The power of two `k` such that the scene's extent times `2^k` is below `2^EXTENT_LOG2`
-/// units, as large as possible up to [`MAX_SCALE_LOG2`].
-fn scale_log2<const S: usize, const L: usize>(scene: &Scene<S, L>) -> i32 {
-    let extent = scene.extent();
-    // extent = f·2^e with f in [½, 1): extent·2^(EXTENT_LOG2 − e) < 2^EXTENT_LOG2.
-    let (_, e) = libm::frexpf(extent);
-    (EXTENT_LOG2 - e).min(MAX_SCALE_LOG2)
+/// Per lobe of a material of shininess `shininess` (then `more_shininess`), the constants
+/// of its energy factor under a sphere light, for `area::lobe_widening`: from its exponent
+/// `n` (`n′ = n`, or `n/4` for Blinn-Phong), `[√(πn′/2)` in U16F16, `n′/2` in U20F12`]`,
+/// saturating (0 for `n = 0`).
+#[cfg(all(feature = "area-lights", feature = "full-width"))]
+#[inline(always)]
+fn widenings(shininess: f32, params: &Params<f32>) -> [[u32; 2]; LOBES] {
+    let exponents = [
+        shininess,
+        params.more_shininess[0],
+        params.more_shininess[1],
+    ];
+    exponents.map(|n| {
+        let n = if params.blinn > 0.0 { n * 0.25 } else { n };
+        let a = libm::sqrtf(core::f32::consts::FRAC_PI_2 * n);
+        [fixed_bits_u32(a, 16), fixed_bits_u32(0.5 * n, 12)].map(|b| b.unwrap_or(u32::MAX))
+    })
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
@@ -473,8 +495,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// with [`RenderError::OutOfFixedRange`] if a number does not fit the fixed formats (see
     /// the [module table](crate::fixed)): a sphere smaller than `2⁻¹³` of the scene's extent
     /// (`radius`), a field of view or aspect ratio with `tan(vfov/2)·max(1, w/h)` above
-    /// [`MAX_PLANE_SCALE`] (`vfov`), and `kd·albedo`, `ks`, or a distant light's
-    /// `colour·intensity` above [`MAX_LEVEL`] in a channel (`kd`, `ks`, `intensity`).
+    /// [`MAX_PLANE_SCALE`](super::MAX_PLANE_SCALE) (`vfov`), and `kd·albedo`, `ks`, or a
+    /// distant light's `colour·intensity` above [`MAX_LEVEL`](super::MAX_LEVEL) in a channel
+    /// (`kd`, `ks`, `intensity`).
     pub fn new(scene: &Scene<S, L>, width: u32, height: u32) -> Result<Self, RenderError> {
         let mut frame = Self::EMPTY;
         frame.prepare(scene, width, height)?;
@@ -574,7 +597,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// steps below ½, which the narrow kernel needs (see [`Self::prepare_narrow`]).
     /// Inlined into [`Self::prepare`] on ARMv6-M, where that is smaller at the same peak
     /// stack; out of line elsewhere: inlined, it is copied to every place a firmware prepares
-    /// a frame (`docs/performance.md, "Choices measured"`).
+    /// a frame (`docs/performance.md, "Choices measured"`). Its stages are inlined into it.
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn prepare_fields(
@@ -584,38 +607,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         height: u32,
     ) -> Result<bool, RenderError> {
         self.clear();
-        if width == 0 || height == 0 || width > MAX_DIMENSION || height > MAX_DIMENSION {
-            return Err(RenderError::BadSize { width, height });
-        }
-        // A scene holds a sphere light only with `area-lights`; the fixed path shades it in
-        // its full-width kernel.
-        #[cfg(all(feature = "area-lights", not(feature = "full-width")))]
-        if let Some(light) = scene.sphere_light() {
-            return Err(RenderError::SphereLight { light });
-        }
-        let camera = scene.camera();
-        let (right, up, forward) = scene.camera_basis();
-        let tan = camera.tan_half_fov();
-        let (width_f, height_f) = (width as f32, height as f32);
-        let x_scale = (width_f / height_f) * tan;
-        if !(tan <= MAX_PLANE_SCALE && x_scale <= MAX_PLANE_SCALE) {
-            return Err(out_of_range(Item::Camera, "vfov"));
-        }
-        let half_pixel = tan / height_f;
-        // The narrow kernel's view (see `prepare_narrow`). The corners' directions are the
-        // longest: `|d|² = 1 + (dx² + dy²)·half_pixel²` for the orthonormal basis, at the
-        // half-pixel offsets `dx = w − 1`, `dy = h − 1`. At most 2 less `2⁻⁸`: the steps'
-        // rounding to Q29 (within `2⁻³⁰`, times offsets up to `2¹⁶`) and the basis' and this
-        // sum's `f32` rounding move the narrow kernel's integer `|d|²` by less than `2⁻¹⁰`,
-        // so it stays below 2. And the steps below ½ (a one-pixel-wide image leaves
-        // `step_x` unbounded by the corners), so that in Q29 each component of a step, at
-        // most `half_pixel` (`1 + 2⁻²²` with the basis' rounding), and twice it fit `i32`.
-        let (dx, dy) = (width_f - 1.0, height_f - 1.0);
-        let corners = (dx * dx + dy * dy) * half_pixel * half_pixel <= 1.0 - 1.0 / 256.0
-            && half_pixel < 0.499;
-
+        let plane = Plane::of(scene, width, height)?;
         let k = scale_log2(scene);
         let scale = pow2(k);
+        let camera = scene.camera();
         let eye = to_len(camera.position, scale, Item::Camera, "position")?;
         let epsilon = fixed_bits_i32(scene.ray_epsilon() * scale, 16)
             .map(Len::from_bits)
@@ -623,168 +618,55 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         #[cfg(feature = "full-width")]
         let view = View {
             eye: camera.position,
-            right,
-            up,
-            forward,
-            half_pixel,
+            right: plane.right,
+            up: plane.up,
+            forward: plane.forward,
+            half_pixel: plane.half_pixel,
             width,
             height,
         };
 
         for (i, s) in scene.spheres().iter().enumerate() {
-            let item = Item::Sphere(i);
-            let m = &s.material;
-            let center = to_len(s.center, scale, item, "center")?;
-            let radius = fixed_bits_i32(s.radius * scale, 16)
-                .map(Len::from_bits)
-                .ok_or(out_of_range(item, "radius"))?;
-            if radius < MIN_SCALED_RADIUS {
-                return Err(small_beside_extent(scene, i));
-            }
-            let radius_raw = radius.to_bits() as i64;
             #[cfg(feature = "full-width")]
-            let inv_radius =
-                inv_sqrt((radius_raw * radius_raw) as u64).ok_or(out_of_range(item, "radius"))?;
-            // The float paths' constants (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1 for the
-            // normalized models; normalization factors; F₀), converted to fixed formats.
-            // Without the full-width kernel only the classic models render: the others are
-            // refused here, before their constants are computed (and their code is linked).
-            #[cfg(feature = "full-width")]
-            let params = Params::<f32>::of(m);
+            let sphere = fixed_sphere(scene, i, s, scale, eye, &view)?;
             #[cfg(not(feature = "full-width"))]
-            let params = match m.model {
-                Model::OrenNayar { .. } | Model::Ggx(_) => {
-                    return Err(RenderError::NeedsFullWidth {
-                        item,
-                        field: "model",
-                    })
-                }
-                _ => Params::<f32>::of(m),
-            };
-            let kd_albedo = params.kd_albedo;
-            let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
-            let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
-            let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
-            let sphere = FixedSphere {
-                center,
-                eye_offset: each3(|c| eye[c] - center[c]),
-                radius_sq: I32F32::from_bits(radius_raw * radius_raw),
-                #[cfg(feature = "full-width")]
-                inv_radius,
-                kd_albedo,
-                ks,
-                shininess: Exact::from_f32(m.shininess),
-                blinn: params.blinn > 0.0,
-                normalized: params.normalized > 0.0,
-                weight: params.weight.map(Exact::from_f32),
-                more_shininess: params.more_shininess.map(Exact::from_f32),
-                f0: [params.f0.x, params.f0.y, params.f0.z].map(unit),
-                schlick: params.schlick > 0.0,
-                diffuse_loss: params.diffuse_loss > 0.0,
-                #[cfg(feature = "full-width")]
-                bounds: view.bounds(s.center, s.radius),
-                narrow: None,
-                #[cfg(feature = "models")]
-                oren_nayar: (params.oren_nayar > 0.0)
-                    .then(|| [unit(params.on_a), unit(params.on_b)]),
-                #[cfg(feature = "models")]
-                ggx: (params.ggx > 0.0).then(|| {
-                    let u1f31 = |v: f32| (v.clamp(0.0, 1.0) * (1u64 << 31) as f32) as u32;
-                    FixedGgx {
-                        alpha2: u1f31(params.alpha2),
-                        one_minus_alpha2: u1f31(1.0 - params.alpha2),
-                        scale: Exact::from_f32(
-                            params.weight[0] * params.alpha2 / (2.0 * core::f32::consts::PI),
-                        ),
-                        #[cfg(all(feature = "area-lights", feature = "full-width"))]
-                        alpha: u1f31(libm::sqrtf(params.alpha2)),
-                    }
-                }),
-                radius,
-                #[cfg(all(feature = "area-lights", feature = "full-width"))]
-                widening: {
-                    let exponents = [
-                        m.shininess,
-                        params.more_shininess[0],
-                        params.more_shininess[1],
-                    ];
-                    exponents.map(|e| widening(e, params.blinn > 0.0))
-                },
-            };
+            let sphere = fixed_sphere(scene, i, s, scale, eye)?;
             // Same capacity as the scene: cannot fail.
             let pushed = self.spheres.push(sphere);
             debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
         }
-
         for (i, l) in scene.lights().iter().enumerate() {
-            let item = Item::Light(i);
-            let light = match *l {
-                Light::Distant {
-                    direction,
-                    color,
-                    intensity,
-                } => {
-                    let arriving = Vec3::new(color.r, color.g, color.b).scale(intensity);
-                    // Validated: a scene's light direction is finite and not zero.
-                    let d = (-direction)
-                        .normalized()
-                        .ok_or(out_of_range(item, "direction"))?;
-                    FixedLight::Distant {
-                        to_light: unit_q30(d),
-                        arriving: to_levels(
-                            [arriving.x, arriving.y, arriving.z],
-                            item,
-                            "intensity",
-                        )?,
-                    }
-                }
-                // The narrow kernel renders point lights of radius 0 only.
-                #[cfg(not(feature = "full-width"))]
-                Light::Point { radius, .. } if radius > 0.0 => {
-                    return Err(RenderError::NeedsFullWidth {
-                        item,
-                        field: "radius",
-                    })
-                }
-                Light::Point {
-                    position,
-                    color,
-                    intensity,
-                    radius,
-                } => {
-                    let power = Vec3::new(color.r, color.g, color.b)
-                        .scale(intensity / (4.0 * core::f32::consts::PI))
-                        .scale(pow2(2 * k));
-                    let power = [power.x, power.y, power.z];
-                    if !power.iter().all(|p| p.is_finite()) {
-                        return Err(out_of_range(item, "intensity"));
-                    }
-                    let position = to_len(position, scale, item, "position")?;
-                    let power = power.map(Exact::from_f32);
-                    #[cfg(feature = "area-lights")]
-                    if radius > 0.0 {
-                        let radius = fixed_bits_i32(radius * scale, 16)
-                            .filter(|r| *r > 0)
-                            .map(Len::from_bits)
-                            .ok_or(out_of_range(item, "radius"))?;
-                        let pushed = self.lights.push(FixedLight::Sphere {
-                            position,
-                            power,
-                            radius,
-                        });
-                        debug_assert!(pushed.is_ok(), "light {i} beyond the prepared capacity");
-                        continue;
-                    }
-                    let _ = radius;
-                    FixedLight::Point { position, power }
-                }
-            };
+            let light = fixed_light(Item::Light(i), l, scale, k)?;
             // Same capacity as the scene: cannot fail.
             let pushed = self.lights.push(light);
             debug_assert!(pushed.is_ok(), "light {i} beyond the prepared capacity");
         }
-
         #[cfg(feature = "full-width")]
+        self.prepare_casters(scene);
+
+        let bg = scene.background();
+        self.step_x = to_wide(plane.right, plane.half_pixel)?;
+        self.step_y = to_wide(plane.up, plane.half_pixel)?;
+        self.forward = to_wide(plane.forward, 1.0)?;
+        self.width = width;
+        self.height = height;
+        self.eye = eye;
+        self.epsilon = epsilon;
+        // Saturating, like `saturating_from_num`, but without its panic on NaN.
+        self.background = [bg.r, bg.g, bg.b].map(|c| {
+            let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
+            fixed_bits_u32(c, 16)
+                .map_or(saturated, U16F16::from_bits)
+                .to_bits()
+        });
+        Ok(plane.corners)
+    }
+
+    /// Per sphere and light, the spheres that can shadow it ([`Scene::shadow_casters`]),
+    /// for the full-width kernel.
+    #[cfg(feature = "full-width")]
+    #[inline(always)]
+    fn prepare_casters(&mut self, scene: &Scene<S, L>) {
         for i in 0..scene.spheres().len() {
             let mut per_light = [0u32; L];
             for (mask, light) in per_light.iter_mut().zip(scene.lights()) {
@@ -797,23 +679,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 "casters of sphere {i} beyond the prepared capacity"
             );
         }
-
-        let bg = scene.background();
-        self.step_x = to_wide(right, half_pixel)?;
-        self.step_y = to_wide(up, half_pixel)?;
-        self.forward = to_wide(forward, 1.0)?;
-        self.width = width;
-        self.height = height;
-        self.eye = eye;
-        self.epsilon = epsilon;
-        // Saturating, like `saturating_from_num`, but without its panic on NaN.
-        self.background = [bg.r, bg.g, bg.b].map(|c| {
-            let saturated = if c < 0.0 { U16F16::MIN } else { U16F16::MAX };
-            fixed_bits_u32(c, 16)
-                .map_or(saturated, U16F16::from_bits)
-                .to_bits()
-        });
-        Ok(corners)
     }
 
     /// [`Self::prepare_narrow`], and without the full-width kernel the refusal of a frame the
@@ -902,51 +767,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 mod tests {
     extern crate std;
     use super::*;
-
-    /// The light's unit vector, for directions all around the sphere (a xorshift stream)
-    /// and along the axes and diagonals: each component within one step of 2⁻³⁰ of the
-    /// exact (`f64`) unit vector along the same 30-bit components (the general
-    /// normalization, `vector::normalize`, is within 1.94 steps on the same inputs), so of
-    /// unit length within `2⁻²⁸`. Both keep the `f32` unit vector's own direction, within
-    /// about `2⁻²⁴` of the scene's.
-    #[test]
-    fn unit_q30_is_the_unit_vector_to_a_step() {
-        let mut x = 0x2545_f491_4f6c_dd1du64;
-        let mut next = move || {
-            x ^= x << 13;
-            x ^= x >> 7;
-            x ^= x << 17;
-            (x >> 40) as f32 / (1u64 << 23) as f32 - 1.0
-        };
-        let mut dirs: std::vec::Vec<Vec3> = (0..20_000)
-            .map(|_| Vec3::new(next(), next(), next()))
-            .collect();
-        for (a, b, c) in [
-            (1.0, 0.0, 0.0),
-            (0.0, -1.0, 0.0),
-            (1.0, 1.0, 1.0),
-            (-1.0, 1e-6, 0.5),
-        ] {
-            dirs.push(Vec3::new(a, b, c));
-        }
-        let (mut worst_len, mut worst_step) = (0i64, 0.0f64);
-        for d in dirs {
-            let Some(unit) = d.normalized() else {
-                continue;
-            };
-            let got = unit_q30(unit);
-            let len2: i64 = got.iter().map(|c| mul_ii(c.to_bits(), c.to_bits())).sum();
-            worst_len = worst_len.max((len2 - (1 << 60)).abs());
-            let q30 = [unit.x, unit.y, unit.z].map(|c| fixed_bits_i32(c, 30).unwrap() as f64);
-            let len = (q30[0] * q30[0] + q30[1] * q30[1] + q30[2] * q30[2]).sqrt();
-            for (g, c) in got.iter().zip(q30) {
-                let want = c / len * (1u64 << 30) as f64;
-                worst_step = worst_step.max((g.to_bits() as f64 - want).abs());
-            }
-        }
-        assert!(worst_step <= 1.0, "a component {worst_step} steps off");
-        assert!(worst_len <= 1 << 32, "|v|² off by {worst_len} in Q60");
-    }
 
     /// The prepare's `f32` corner test keeps every narrow direction's integer `|D|²` within
     /// `2·2⁵⁸` (`|d|² ≤ 2`) and the steps below ½, and takes every frame whose corners are

@@ -12,6 +12,10 @@
 //! pixel (`2·step_x`), which is exactly the value `(2x + 1 − w)·step_x` would give: no
 //! rounding accumulates. Rows, pixels and slices are only reached through `get_mut` and
 //! iterators, and every index is checked, so nothing here can panic.
+//!
+//! The parts that differ by feature are one function per variant, each variant's in an
+//! `impl` block of its own (the full-width kernel's or not, the edge stage's or not), so
+//! that the row functions read the same in every build.
 
 #[cfg(all(feature = "antialias", feature = "full-width"))]
 use super::edges::EdgeRow;
@@ -19,9 +23,7 @@ use super::edges::EdgeRow;
 use super::kernel::ray;
 #[cfg(feature = "full-width")]
 use super::mul::{mul_ii, mul_iu};
-#[cfg(feature = "full-width")]
-use super::narrow::Shaded;
-use super::narrow::{Narrow, NarrowRun, NO_TRACK};
+use super::narrow::{Narrow, NarrowRun, Shaded, NO_TRACK};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_on_row;
 use super::prepare::{FixedSphere, PreparedFixed};
@@ -70,63 +72,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
-    /// Sphere `s`'s span on row `y`: its rectangle's columns narrowed to its outline's.
-    #[cfg(feature = "full-width")]
-    #[inline(always)]
-    fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
-        s.bounds
-            .and_then(|b| b.on_row(y, self.height, self.rectangles()))
-    }
-
-    /// Sphere `s`'s span on row `y`: the columns where the narrow kernel's hit test passes,
-    /// within the rows and columns the prepare found for it (see `outline`).
-    #[cfg(not(feature = "full-width"))]
-    #[inline(always)]
-    fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
-        let n = s.narrow.as_ref()?;
-        if !(n.rows.0 <= y && y < n.rows.1) {
-            return None;
-        }
-        let dy = self.height as i32 - 2 * y as i32 - 1;
-        outline_on_row(&n.e, dy, self.width, n.columns)
-    }
-
-    #[cfg(feature = "full-width")]
-    /// The full-width kernel on the unnormalized primary direction `dir` of pixel `x`: one
-    /// copy in the binary, shared by both row loops.
-    #[inline(never)]
-    fn shade_ray(
-        &self,
-        dir: V3<I16F48>,
-        x: u32,
-        spans: &[Option<Span>],
-        record_hits: bool,
-    ) -> Option<Shaded> {
-        ray(dir).and_then(|d| self.shade(d, x, spans, record_hits))
-    }
-
-    #[cfg(feature = "full-width")]
-    /// [`Self::direction`] where the narrow kernel is set up: every direction's components
-    /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
-    /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
-    /// same bits as [`Self::direction`]. Only the pixels the narrow kernel gives back need
-    /// it; on ARMv6-M, where its six products are calls, it is not inlined into the pixel
-    /// loop.
-    #[cfg_attr(shadeline_short_mul, inline(never))]
-    fn narrow_direction_wide(&self, x: u32, y: u32) -> V3<I16F48> {
-        // |dx|, |dy| ≤ 2·MAX_DIMENSION + 1 < 2³¹.
-        let dy = self.height as i32 - 2 * y as i32 - 1;
-        let dx = 2 * x as i32 + 1 - self.width as i32;
-        let scale =
-            |k: i32, v: i64| (mul_ii(k, (v >> 32) as i32) << 32).wrapping_add(mul_iu(k, v as u32));
-        each3(|i| {
-            let v = self.forward[i].to_bits()
-                + scale(dy, self.step_y[i].to_bits())
-                + scale(dx, self.step_x[i].to_bits());
-            I16F48::from_bits(v)
-        })
-    }
-
     /// Shades the pixels of the run from column `start` of `row` (`y`, the row's spans, the
     /// encoding and the background) with the narrow kernel (and the full-width one should
     /// it hand a pixel over, on that pixel's direction: exact whether stepped or computed
@@ -149,15 +94,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let finish = |px: &mut P, shaded: Narrow, column: u32| {
             let shaded = match shaded {
                 Narrow::Done(shaded) => shaded,
-                #[cfg(feature = "full-width")]
-                Narrow::Precise => {
-                    let dir = self.narrow_direction_wide(column, y);
-                    debug_assert_eq!(dir, self.direction(column, y));
-                    self.shade_ray(dir, column, spans, P::NEEDS_HITS)
-                }
-                // Only for data a narrow frame always has (`Narrow::Precise`).
-                #[cfg(not(feature = "full-width"))]
-                Narrow::Precise => None,
+                Narrow::Precise => self.handed_over(column, y, spans, P::NEEDS_HITS),
             };
             *px = match shaded {
                 Some(s) => encode::<P, PLAIN>(s.color, s.hit, encoding, column, y),
@@ -240,31 +177,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             rest = later;
         }
     }
-
-    /// Whether the spans are the spheres' rectangles alone (anti-aliased frames: the
-    /// outlines' row spans leave out pixels within reach of an outline).
-    #[cfg(feature = "full-width")]
-    #[inline(always)]
-    fn rectangles(&self) -> bool {
-        #[cfg(all(feature = "antialias", feature = "full-width"))]
-        return self.antialias;
-        #[cfg(not(all(feature = "antialias", feature = "full-width")))]
-        false
-    }
-
-    #[cfg(feature = "full-width")]
-    /// The unnormalized primary direction of pixel `(x, y)`:
-    /// `forward + (h − 2y − 1)·step_y + (2x + 1 − w)·step_x`, exact in I16F48.
-    pub(super) fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
-        let dy = self.height as i64 - 2 * y as i64 - 1;
-        let dx = 2 * x as i64 + 1 - self.width as i64;
-        each3(|i| {
-            let v = self.forward[i].to_bits()
-                + dy.saturating_mul(self.step_y[i].to_bits())
-                + dx.saturating_mul(self.step_x[i].to_bits());
-            I16F48::from_bits(v)
-        })
-    }
 }
 
 impl<const S: usize, const L: usize> Render for PreparedFixed<S, L> {
@@ -329,46 +241,126 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     ) {
         let mut spans = heapless::Vec::new();
         self.row_spans_into(y, &mut spans);
-        #[cfg(feature = "full-width")]
+        self.with_runs(&spans, |runs| {
+            let background = Background::new(encoding, |x| {
+                encode::<P, PLAIN>(self.background, HitRecord::default(), encoding, x, y)
+            });
+            // The edge stage's row state, once per row for all its runs.
+            let edges = self.row_edges(y);
+            walk_runs(out, x as usize, runs, &background, |start, run_pixels| {
+                let row = (y, &spans[..], encoding, &background);
+                match self.chosen_kernel() {
+                    Kernel::Narrow => {
+                        self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels);
+                    }
+                    Kernel::General { .. } => {
+                        self.full_width_pixels::<P, PLAIN>(row, start as u32, run_pixels);
+                    }
+                }
+                self.antialiased::<P, PLAIN>(
+                    (y, &spans[..], encoding),
+                    &edges,
+                    start as u32,
+                    run_pixels,
+                );
+            });
+        });
+    }
+}
+
+/// The row driver's parts for the full-width kernel: its spans, runs and pixels, and the
+/// pixels the narrow kernel hands it.
+#[cfg(feature = "full-width")]
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Sphere `s`'s span on row `y`: its rectangle's columns narrowed to its outline's.
+    #[inline(always)]
+    fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
+        s.bounds
+            .and_then(|b| b.on_row(y, self.height, self.rectangles()))
+    }
+
+    /// `f` on the row's runs: the spans merged, so that no pixel outside a span is shaded.
+    #[inline(always)]
+    fn with_runs(&self, spans: &[Option<Span>], f: impl FnOnce(&[Span])) {
         let mut merged = heapless::Vec::<Span, S>::new();
-        #[cfg(feature = "full-width")]
-        merge_runs_into(&spans, &mut merged);
-        #[cfg(feature = "full-width")]
-        let runs: &[Span] = &merged;
-        // One run, the spans' hull (see the module docs).
-        #[cfg(not(feature = "full-width"))]
-        let hull = coverage_of(&spans);
-        #[cfg(not(feature = "full-width"))]
-        let runs = hull.as_slice();
-        let background = Background::new(encoding, |x| {
-            encode::<P, PLAIN>(self.background, HitRecord::default(), encoding, x, y)
-        });
-        // The edge stage's row state, once per row for all its runs.
-        #[cfg(all(feature = "antialias", feature = "full-width"))]
-        let edges = self.antialias.then(|| self.edge_row(y));
-        walk_runs(out, x as usize, runs, &background, |start, run_pixels| {
-            let row = (y, &spans[..], encoding, &background);
-            match self.chosen_kernel() {
-                Kernel::Narrow => {
-                    self.narrow_pixels::<P, PLAIN>(row, start as u32, run_pixels);
-                }
-                Kernel::General { .. } => {
-                    self.full_width_pixels::<P, PLAIN>(row, start as u32, run_pixels);
-                }
-            }
-            #[cfg(all(feature = "antialias", feature = "full-width"))]
-            self.antialiased::<P, PLAIN>(
-                (y, &spans[..], encoding),
-                &edges,
-                start as u32,
-                run_pixels,
-            );
-        });
+        merge_runs_into(spans, &mut merged);
+        f(&merged)
+    }
+
+    /// A pixel the narrow kernel hands over (`Narrow::Precise`), shaded by the full-width
+    /// kernel on its direction.
+    #[inline(always)]
+    fn handed_over(
+        &self,
+        column: u32,
+        y: u32,
+        spans: &[Option<Span>],
+        record_hits: bool,
+    ) -> Option<Shaded> {
+        let dir = self.narrow_direction_wide(column, y);
+        debug_assert_eq!(dir, self.direction(column, y));
+        self.shade_ray(dir, column, spans, record_hits)
+    }
+
+    /// The full-width kernel on the unnormalized primary direction `dir` of pixel `x`: one
+    /// copy in the binary, shared by both row loops.
+    #[inline(never)]
+    fn shade_ray(
+        &self,
+        dir: V3<I16F48>,
+        x: u32,
+        spans: &[Option<Span>],
+        record_hits: bool,
+    ) -> Option<Shaded> {
+        ray(dir).and_then(|d| self.shade(d, x, spans, record_hits))
+    }
+
+    /// [`Self::direction`] where the narrow kernel is set up: every direction's components
+    /// are then below 2 (2⁴⁹ raw) and each product fits, so `k·step` is two exact 32×32
+    /// products instead of a saturating 64×64 one (a long call sequence on ARMv6-M). The
+    /// same bits as [`Self::direction`]. Only the pixels the narrow kernel gives back need
+    /// it; on ARMv6-M, where its six products are calls, it is not inlined into the pixel
+    /// loop.
+    #[cfg_attr(shadeline_short_mul, inline(never))]
+    fn narrow_direction_wide(&self, x: u32, y: u32) -> V3<I16F48> {
+        // |dx|, |dy| ≤ 2·MAX_DIMENSION + 1 < 2³¹.
+        let dy = self.height as i32 - 2 * y as i32 - 1;
+        let dx = 2 * x as i32 + 1 - self.width as i32;
+        let scale =
+            |k: i32, v: i64| (mul_ii(k, (v >> 32) as i32) << 32).wrapping_add(mul_iu(k, v as u32));
+        each3(|i| {
+            let v = self.forward[i].to_bits()
+                + scale(dy, self.step_y[i].to_bits())
+                + scale(dx, self.step_x[i].to_bits());
+            I16F48::from_bits(v)
+        })
+    }
+
+    /// Whether the spans are the spheres' rectangles alone (anti-aliased frames: the
+    /// outlines' row spans leave out pixels within reach of an outline).
+    #[inline(always)]
+    fn rectangles(&self) -> bool {
+        #[cfg(feature = "antialias")]
+        return self.antialias;
+        #[cfg(not(feature = "antialias"))]
+        false
+    }
+
+    /// The unnormalized primary direction of pixel `(x, y)`:
+    /// `forward + (h − 2y − 1)·step_y + (2x + 1 − w)·step_x`, exact in I16F48.
+    pub(super) fn direction(&self, x: u32, y: u32) -> V3<I16F48> {
+        let dy = self.height as i64 - 2 * y as i64 - 1;
+        let dx = 2 * x as i64 + 1 - self.width as i64;
+        each3(|i| {
+            let v = self.forward[i].to_bits()
+                + dy.saturating_mul(self.step_y[i].to_bits())
+                + dx.saturating_mul(self.step_x[i].to_bits());
+            I16F48::from_bits(v)
+        })
     }
 
     /// The full-width kernel over `run_pixels` from column `start`: one ray per pixel, its
     /// direction stepped along the row.
-    #[cfg(feature = "full-width")]
     fn full_width_pixels<P: Pixel, const PLAIN: bool>(
         &self,
         (y, spans, encoding, background): RunRow<'_, P>,
@@ -388,10 +380,40 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             }
         }
     }
+}
+
+/// The row driver's parts without the full-width kernel: the narrow kernel's spans, one run
+/// per row, and no pixel for the full-width kernel.
+#[cfg(not(feature = "full-width"))]
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Sphere `s`'s span on row `y`: the columns where the narrow kernel's hit test passes,
+    /// within the rows and columns the prepare found for it (see `outline`).
+    #[inline(always)]
+    fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
+        let n = s.narrow.as_ref()?;
+        if !(n.rows.0 <= y && y < n.rows.1) {
+            return None;
+        }
+        let dy = self.height as i32 - 2 * y as i32 - 1;
+        outline_on_row(&n.e, dy, self.width, n.columns)
+    }
+
+    /// `f` on the row's runs: one run, the spans' hull (see the module docs).
+    #[inline(always)]
+    fn with_runs(&self, spans: &[Option<Span>], f: impl FnOnce(&[Span])) {
+        let hull = coverage_of(spans);
+        f(hull.as_slice())
+    }
+
+    /// A pixel the narrow kernel hands over (`Narrow::Precise`): only for data a narrow frame
+    /// always has, so none without the full-width kernel.
+    #[inline(always)]
+    fn handed_over(&self, _: u32, _: u32, _: &[Option<Span>], _: bool) -> Option<Shaded> {
+        None
+    }
 
     /// Without the full-width kernel every prepared frame is a narrow one
     /// ([`PreparedFixed::kernel`]): never called, the background for completeness.
-    #[cfg(not(feature = "full-width"))]
     fn full_width_pixels<P: Pixel, const PLAIN: bool>(
         &self,
         (_, _, _, background): RunRow<'_, P>,
@@ -402,9 +424,18 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             *px = background.at(column);
         }
     }
+}
+
+/// The edge stage's parts of the row driver.
+#[cfg(all(feature = "antialias", feature = "full-width"))]
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// The edge stage's row state, if the frame is anti-aliased.
+    #[inline(always)]
+    fn row_edges(&self, y: u32) -> Option<EdgeRow<S>> {
+        self.antialias.then(|| self.edge_row(y))
+    }
 
     /// The `edges` stage over a shaded run, if the frame is anti-aliased.
-    #[cfg(all(feature = "antialias", feature = "full-width"))]
     #[inline(never)]
     fn antialiased<P: Pixel, const PLAIN: bool>(
         &self,
@@ -419,6 +450,31 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.antialias_run((y, spans), view, start, run_pixels, |color, hit, x| {
             encode::<P, PLAIN>(color, hit, encoding, x, y)
         });
+    }
+}
+
+/// The row state of an edge stage that is not built.
+#[cfg(not(all(feature = "antialias", feature = "full-width")))]
+struct NoEdges;
+
+/// Without the edge stage, its parts of the row driver do nothing.
+#[cfg(not(all(feature = "antialias", feature = "full-width")))]
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// No edge stage: no row state.
+    #[inline(always)]
+    fn row_edges(&self, _: u32) -> NoEdges {
+        NoEdges
+    }
+
+    /// No edge stage: the run as shaded.
+    #[inline(always)]
+    fn antialiased<P: Pixel, const PLAIN: bool>(
+        &self,
+        _: (u32, &[Option<Span>], Encoding),
+        _: &NoEdges,
+        _: u32,
+        _: &mut [P],
+    ) {
     }
 }
 
