@@ -37,7 +37,8 @@
 //! with no such pixel skip the rest. What this does not smooth: where two spheres intersect
 //! (that curve is not an outline), and a third outline in the same pixel.
 
-use super::kernel::{Filter, Packet};
+use super::intersect::Filter;
+use super::kernel::Packet;
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, Row};
 use crate::real::Real;

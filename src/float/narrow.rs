@@ -42,7 +42,7 @@
 //! where each term is of the order of the result. The nearest of several spheres is the
 //! smallest `r·(−b − √E′)` (the distance times `|D|`). Distances and the normal are not
 //! formed, except where a shadow ray must be tested against another sphere, which takes the
-//! general kernel's [`super::kernel::meets`] from `P + ε·N` with
+//! general kernel's [`super::intersect::meets`] from `P + ε·N` with
 //! `N = ô − (b·σ + N·V)·σ·D`; a lane's own sphere shadows it iff `N·L < 0` and
 //! `(N·L)² > 1 − r²/(r + ε)²`, and a caster is tested only where the caster filter (from
 //! `N·L` alone, see the fixed path's `NarrowLight`) lets it.
@@ -63,7 +63,8 @@
 //! while a packet's only candidate stays the same sphere its constants are looked up once
 //! (`single`, `shade_single`).
 
-use super::kernel::{combine_with, meets, Packet};
+use super::intersect::meets;
+use super::kernel::{combine_with, Packet};
 use super::lane::Lane;
 use super::prepare::{FloatPath, NarrowLight, Prepared, PreparedLight};
 use crate::brdf::{Pow, BLINN_PHONG};
