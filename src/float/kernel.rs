@@ -20,15 +20,15 @@
 //!
 //! The files follow what a stage works on: this one holds the stages that run once per
 //! packet (`shade`, the surface's `ray`, `hit` and `normal`, and `combine`),
-//! [`super::light_loop`] those that run once per light (a sphere light's own `incoming` and
-//! `shadow` among them), and [`super::intersect`] the ray–sphere tests that `hit`, `shadow`,
-//! the narrow kernel and the `edges` stage share.
+//! [`super::light_loop`] those that run once per light, `sphere_light` a sphere light's own
+//! `incoming` and `shadow`, and [`super::intersect`] the ray–sphere tests that `hit`,
+//! `shadow`, the narrow kernel and the `edges` stage share.
 //!
 //! A sphere light (a point light with a radius, crate feature `area-lights`) has its own
 //! `incoming` (`sphere_incoming`: the representative point's direction for the lobes, the
 //! sphere's diffuse cosine) and `shadow` (`soft_shadow`: the share of the light's cap left
-//! uncovered, analytic, no shadow rays), then the same `diffuse` and `specular` with
-//! [`brdf::terms_with`]; see `area` for the formulas and their errors. A point light of
+//! uncovered, analytic, no shadow rays), both in `sphere_light`, then the same `diffuse` and
+//! `specular` with [`brdf::terms_with`]; see `area` for the formulas and their errors. A point light of
 //! radius 0 is a `Point` light and takes exactly the stages above.
 //!
 //! (`diffuse` and `specular` accumulate [`brdf::terms`]: for the normalized models the diffuse

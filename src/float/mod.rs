@@ -10,7 +10,8 @@
 //! | `spans` | each sphere's analytic, conservative pixel span on a row |
 //! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
 //! | `kernel` | the general kernel's per-packet stages: `shade`, `ray`, `hit`, `normal`, `combine` |
-//! | `light_loop` | the general kernel's light loop, `lights`, and its per-light stages: `incoming`, `shadow`, `diffuse`, `specular` (with `area-lights`, a sphere light's `incoming` and `shadow`) |
+//! | `light_loop` | the general kernel's light loop, `lights`, and its per-light stages: `incoming`, `shadow`, `diffuse`, `specular` |
+//! | `sphere_light` | a sphere light's `incoming` and `shadow` in the general kernel (`area-lights`) |
 //! | `intersect` | the ray–sphere tests: the nearest hit, the shadow test, an edge's filtered hit |
 //! | `narrow` | the narrow kernel: classic models under distant lights, from quadrics along the row |
 //! | `area` | sphere lights: the diffuse horizon, the covered share of the light's cap, `acos` |
@@ -38,6 +39,8 @@ mod narrow;
 mod prepare;
 mod row;
 mod spans;
+#[cfg(feature = "area-lights")]
+mod sphere_light;
 
 #[doc(hidden)]
 pub use lane::{Lane, Rooted};
