@@ -37,7 +37,8 @@
 //! with no such pixel skip the rest. What this does not smooth: where two spheres intersect
 //! (that curve is not an outline), and a third outline in the same pixel.
 
-use super::kernel::{Filter, Packet};
+use super::intersect::Filter;
+use super::kernel::Packet;
 use super::lane::Lane;
 use super::prepare::{FloatPath, Prepared, Row};
 use crate::real::Real;
@@ -122,6 +123,19 @@ impl<T: Lane> Edge<T> {
     }
 }
 
+/// What the first half of `edges` found on a packet's lanes: the front outline within
+/// reach of each centre.
+struct Front<T: Lane> {
+    /// The outline's sphere, as `f32`; `-1` on lanes with none.
+    sphere: T,
+    /// Lanes whose centre ray hits that sphere.
+    inside: T::Mask,
+    /// The conic `F` at the centre, and half its gradient, `∇F/2`, in image-plane axes.
+    f: T,
+    gx: T,
+    gy: T,
+}
+
 impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// The packet `centre` (the centre rays `u`, unit `d`, which hit at distance `t`) with
     /// the lanes that outlines cross anti-aliased, if anti-aliasing is on: the first edge,
@@ -194,8 +208,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     /// nearest sphere is `hit_id` (`-1`: none) at distance `hit_t` (`f32::MAX` on a miss), the
     /// front outline within reach of each lane's centre among the `candidates` but `exclude`
     /// (per lane; `-1`: none), or `None` when no lane has one.
-    // `!(k > 0)` on purpose: a NaN takes the branch that has no silhouette.
-    #[allow(clippy::neg_cmp_op_on_partial_ord)]
     #[inline(always)]
     pub(crate) fn edges(
         &self,
@@ -206,9 +218,64 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         exclude: W::Lane,
         candidates: &[u16],
     ) -> Option<Edge<W::Lane>> {
-        let zero = W::Lane::splat(0.0);
         let half = W::Lane::splat(0.5);
         let pixel = W::Lane::splat(self.pixel);
+        let Front {
+            sphere,
+            inside,
+            f,
+            gx,
+            gy,
+        } = self.front_outline(row, u, (hit_id, hit_t), exclude, candidates);
+        let lanes = W::Lane::splat(0.0).le(sphere);
+        if !W::Lane::any(lanes) {
+            return None;
+        }
+        // The outline's distance, coverage and shading direction stay written out here: as an
+        // `#[inline(always)]` function of their own, they take anti-aliased frames more
+        // instructions on the M4F (`docs/performance.md, "Choices measured"`).
+        //
+        // Signed distance to the outline in pixels, F/(|∇F|·pixel), and the coverage. Lanes
+        // with no edge may divide by zero here: `blend` never reads them.
+        let g = (gx * gx + gy * gy).sqrt();
+        let dist = f / ((W::Lane::splat(2.0) * g) * pixel);
+        let coverage = square_coverage(dist, gx.max(-gx) / g, gy.max(-gy) / g);
+        // Where the centre ray misses the edge's sphere: the point c/2 inside the outline,
+        // a step of (dist + c/2) pixels against the gradient.
+        let step = ((dist + coverage * half) * pixel) / g;
+        let pulled = u - Vec3::splat(self.right) * (gx * step) - Vec3::splat(self.up) * (gy * step);
+        let pulled = pulled * (W::Lane::splat(1.0) / pulled.dot(pulled).sqrt());
+        let only = W::Lane::and_not(lanes, inside);
+        Some(Edge {
+            lanes,
+            inside,
+            coverage,
+            dist,
+            normal: (gx / g, gy / g),
+            direction: Vec3::select(only, pulled, d),
+            filter: Filter {
+                sphere,
+                also: W::Lane::splat(-1.0),
+                only,
+            },
+        })
+    }
+
+    /// The first half of [`Self::edges`] (its arguments but `d`): per lane, the outline
+    /// within reach of the centre, of the sphere nearest in front there, and its conic `F`
+    /// and half-gradient at the centre. Lanes with none have sphere `-1`.
+    // `!(k > 0)` on purpose: a NaN takes the branch that has no silhouette.
+    #[allow(clippy::neg_cmp_op_on_partial_ord)]
+    #[inline(always)]
+    fn front_outline(
+        &self,
+        row: &Row,
+        u: Vec3<W::Lane>,
+        (hit_id, hit_t): (W::Lane, W::Lane),
+        exclude: W::Lane,
+        candidates: &[u16],
+    ) -> Front<W::Lane> {
+        let zero = W::Lane::splat(0.0);
         let band = W::Lane::splat(2.0 * self.pixel * self.pixel);
         let x = u.dot(Vec3::splat(self.right));
         let y = W::Lane::splat(row.y);
@@ -257,34 +324,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             gx = W::Lane::select(take, gxk, gx);
             gy = W::Lane::select(take, gyk, gy);
         }
-        let lanes = zero.le(sphere);
-        if !W::Lane::any(lanes) {
-            return None;
-        }
-        // Signed distance to the outline in pixels, F/(|∇F|·pixel), and the coverage. Lanes
-        // with no edge may divide by zero here: `blend` never reads them.
-        let g = (gx * gx + gy * gy).sqrt();
-        let dist = f / ((W::Lane::splat(2.0) * g) * pixel);
-        let coverage = square_coverage(dist, gx.max(-gx) / g, gy.max(-gy) / g);
-        // Where the centre ray misses the edge's sphere: the point c/2 inside the outline,
-        // a step of (dist + c/2) pixels against the gradient.
-        let step = ((dist + coverage * half) * pixel) / g;
-        let pulled = u - Vec3::splat(self.right) * (gx * step) - Vec3::splat(self.up) * (gy * step);
-        let pulled = pulled * (W::Lane::splat(1.0) / pulled.dot(pulled).sqrt());
-        let only = W::Lane::and_not(lanes, inside);
-        Some(Edge {
-            lanes,
+        Front {
+            sphere,
             inside,
-            coverage,
-            dist,
-            normal: (gx / g, gy / g),
-            direction: Vec3::select(only, pulled, d),
-            filter: Filter {
-                sphere,
-                also: W::Lane::splat(-1.0),
-                only,
-            },
-        })
+            f,
+            gx,
+            gy,
+        }
     }
 }
 

@@ -9,7 +9,10 @@
 //! | `prepare` | [`Prepared`] and its per-frame constants; the width markers; per-row constants |
 //! | `spans` | each sphere's analytic, conservative pixel span on a row |
 //! | `row` | the row driver: [`Render`](crate::Render) for [`Prepared`], and the `encode` step |
-//! | `kernel` | the per-pixel stages: `ray`, `hit`, `normal`, `lights` (`incoming`, `shadow`, `diffuse`, `specular`), `combine` |
+//! | `kernel` | the general kernel's per-packet stages: `shade`, `ray`, `hit`, `normal`, `combine` |
+//! | `light_loop` | the general kernel's light loop, `lights`, and its per-light stages: `incoming`, `shadow`, `diffuse`, `specular` |
+//! | `sphere_light` | a sphere light's `incoming` and `shadow` in the general kernel (`area-lights`) |
+//! | `intersect` | the ray–sphere tests: the nearest hit, the shadow test, an edge's filtered hit |
 //! | `narrow` | the narrow kernel: classic models under distant lights, from quadrics along the row |
 //! | `area` | sphere lights: the diffuse horizon, the covered share of the light's cap, `acos` |
 //! | `edges` | analytic anti-aliasing of the silhouettes: each outline's coverage of a pixel, and the blend |
@@ -26,13 +29,18 @@
 pub(crate) mod area;
 #[cfg(feature = "antialias")]
 mod edges;
+mod intersect;
 mod kernel;
 mod lane;
+// Its name is a measured choice (`docs/performance.md, "Choices measured"`).
+mod light_loop;
 mod math;
 mod narrow;
 mod prepare;
 mod row;
 mod spans;
+#[cfg(feature = "area-lights")]
+mod sphere_light;
 
 #[doc(hidden)]
 pub use lane::{Lane, Rooted};

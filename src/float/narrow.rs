@@ -42,7 +42,7 @@
 //! where each term is of the order of the result. The nearest of several spheres is the
 //! smallest `r·(−b − √E′)` (the distance times `|D|`). Distances and the normal are not
 //! formed, except where a shadow ray must be tested against another sphere, which takes the
-//! general kernel's [`super::kernel::meets`] from `P + ε·N` with
+//! general kernel's [`super::intersect::meets`] from `P + ε·N` with
 //! `N = ô − (b·σ + N·V)·σ·D`; a lane's own sphere shadows it iff `N·L < 0` and
 //! `(N·L)² > 1 − r²/(r + ε)²`, and a caster is tested only where the caster filter (from
 //! `N·L` alone, see the fixed path's `NarrowLight`) lets it.
@@ -63,7 +63,8 @@
 //! while a packet's only candidate stays the same sphere its constants are looked up once
 //! (`single`, `shade_single`).
 
-use super::kernel::{combine_with, meets, Packet};
+use super::intersect::meets;
+use super::kernel::{combine_with, Packet};
 use super::lane::Lane;
 use super::prepare::{FloatPath, NarrowLight, Prepared, PreparedLight};
 use crate::brdf::{Pow, BLINN_PHONG};
@@ -358,7 +359,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         record_hits: bool,
         saturate: bool,
     ) -> (Packet<W::Lane>, W::Lane) {
-        let zero = W::Lane::splat(0.0);
         let bg = self.background;
         let background = Vec3::splat(Vec3::new(bg.r, bg.g, bg.b));
         let mut packet = Packet {
@@ -367,60 +367,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             shadowed: [0; 8],
         };
         let x = self.narrow_columns(x0);
-
-        // `hit`: the nearest sphere with E′ ≥ 0 in front, by r·(−b − √E′).
-        let mut key = W::Lane::splat(f32::MAX);
-        let (mut root, mut xl) = (zero, zero);
-        let mut id = W::Lane::splat(-1.0);
-        for &k in candidates {
-            let (Some(n), Some(rs)) = (
-                self.spheres.get(k as usize).and_then(|s| s.narrow.as_ref()),
-                nrow.sphere(k as usize),
-            ) else {
-                continue;
-            };
-            let here = x - W::Lane::splat(n.origin);
-            let e = horner(rs.e, here);
-            let b = W::Lane::splat(rs.b[0]) + here * W::Lane::splat(rs.b[1]);
-            let hit = W::Lane::and(zero.le(e), b.lt(zero));
-            if !W::Lane::any(hit) {
-                continue;
-            }
-            let r = e.max(zero).sqrt();
-            let t = (-b - r) * W::Lane::splat(n.radius);
-            let nearer = W::Lane::and(hit, t.lt(key));
-            key = W::Lane::select(nearer, t, key);
-            root = W::Lane::select(nearer, r, root);
-            xl = W::Lane::select(nearer, here, xl);
-            id = W::Lane::select(nearer, W::Lane::splat(k as f32), id);
-        }
-        let any_hit = zero.le(id);
+        let (geometry, xl, key) = self.narrow_hit(nrow, x, candidates);
+        let id = geometry.id;
         packet.sphere = id;
-        if !W::Lane::any(any_hit) {
+        if !W::Lane::any(geometry.any_hit) {
             return (packet, key);
         }
-        let geometry = Geometry {
-            x,
-            root,
-            id,
-            any_hit,
-        };
-        let value = |f: &dyn Fn(&super::prepare::PreparedSphere) -> f32| {
-            own(candidates, id, |k| {
-                W::Lane::splat(self.spheres.get(k).map_or(0.0, f))
-            })
-        };
-        let hitting = Hitting {
-            kd_albedo: Vec3::new(
-                value(&|s| s.params.kd_albedo.x),
-                value(&|s| s.params.kd_albedo.y),
-                value(&|s| s.params.kd_albedo.z),
-            ),
-            ks: value(&|s| s.narrow.as_ref().map_or(0.0, |n| n.ks)),
-            shininess: value(&|s| s.params.shininess),
-            blinn: zero.lt(value(&|s| s.params.blinn)),
-            own_limit: value(&|s| s.narrow.as_ref().map_or(0.0, |n| n.own_limit)),
-        };
+        let hitting = self.narrow_hitting(candidates, id);
         self.narrow_lights_stage(
             (j, nrow, candidates),
             &geometry,
@@ -447,6 +400,76 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             (record_hits, saturate, &mut packet),
         );
         (packet, key)
+    }
+
+    /// `hit` of the narrow kernel for the columns `x` (as `X`) on the row `nrow`: per lane
+    /// the nearest of the `candidates` with `E′ ≥ 0` in front, by `r·(−b − √E′)`. Gives the
+    /// lanes' [`Geometry`], each lane's `x = X − X₀` of that sphere (0 on a miss) and the
+    /// distance key (`f32::MAX` on a miss).
+    #[inline(always)]
+    fn narrow_hit(
+        &self,
+        nrow: &NarrowRow<S, L>,
+        x: W::Lane,
+        candidates: &[u16],
+    ) -> (Geometry<W::Lane>, W::Lane, W::Lane) {
+        let zero = W::Lane::splat(0.0);
+        let mut key = W::Lane::splat(f32::MAX);
+        let (mut root, mut xl) = (zero, zero);
+        let mut id = W::Lane::splat(-1.0);
+        for &k in candidates {
+            let (Some(n), Some(rs)) = (
+                self.spheres.get(k as usize).and_then(|s| s.narrow.as_ref()),
+                nrow.sphere(k as usize),
+            ) else {
+                continue;
+            };
+            let here = x - W::Lane::splat(n.origin);
+            let e = horner(rs.e, here);
+            let b = W::Lane::splat(rs.b[0]) + here * W::Lane::splat(rs.b[1]);
+            let hit = W::Lane::and(zero.le(e), b.lt(zero));
+            if !W::Lane::any(hit) {
+                continue;
+            }
+            let r = e.max(zero).sqrt();
+            let t = (-b - r) * W::Lane::splat(n.radius);
+            let nearer = W::Lane::and(hit, t.lt(key));
+            key = W::Lane::select(nearer, t, key);
+            root = W::Lane::select(nearer, r, root);
+            xl = W::Lane::select(nearer, here, xl);
+            id = W::Lane::select(nearer, W::Lane::splat(k as f32), id);
+        }
+        let any_hit = zero.le(id);
+        let geometry = Geometry {
+            x,
+            root,
+            id,
+            any_hit,
+        };
+        (geometry, xl, key)
+    }
+
+    /// What the light stage reads of each lane's sphere ([`Hitting`]), the sphere being the
+    /// one of the `candidates` that the lane's `id` names.
+    #[inline(always)]
+    fn narrow_hitting(&self, candidates: &[u16], id: W::Lane) -> Hitting<W::Lane> {
+        let zero = W::Lane::splat(0.0);
+        let value = |f: &dyn Fn(&super::prepare::PreparedSphere) -> f32| {
+            own(candidates, id, |k| {
+                W::Lane::splat(self.spheres.get(k).map_or(0.0, f))
+            })
+        };
+        Hitting {
+            kd_albedo: Vec3::new(
+                value(&|s| s.params.kd_albedo.x),
+                value(&|s| s.params.kd_albedo.y),
+                value(&|s| s.params.kd_albedo.z),
+            ),
+            ks: value(&|s| s.narrow.as_ref().map_or(0.0, |n| n.ks)),
+            shininess: value(&|s| s.params.shininess),
+            blinn: zero.lt(value(&|s| s.params.blinn)),
+            own_limit: value(&|s| s.narrow.as_ref().map_or(0.0, |n| n.own_limit)),
+        }
     }
 
     /// `packet` (shaded by [`Self::shade_single`] or [`Self::shade_narrow`], which also gave

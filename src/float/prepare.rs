@@ -293,10 +293,72 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         let height_f = height as f32;
         let eye = camera.position;
         // The side of a pixel on the image plane at distance 1 (pixels are square).
-        #[cfg(feature = "antialias")]
         let pixel = 2.0 * tan / height_f;
 
+        // The stages fill vectors this function owns: returning theirs, they take the prepare
+        // more instructions on the M4F (`docs/performance.md, "Choices measured"`).
         let mut spheres = heapless::Vec::new();
+        Self::prepare_spheres(&mut spheres, scene, eye, (right, up, pixel));
+        let mut lights = heapless::Vec::new();
+        Self::prepare_lights(&mut lights, scene);
+        let mut casters = heapless::Vec::new();
+        Self::prepare_casters(&mut casters, scene);
+        #[cfg(feature = "area-lights")]
+        let sphere_lights = lights
+            .iter()
+            .any(|l| matches!(l, PreparedLight::Sphere { .. }));
+        let normalized = spheres.iter().any(|s| s.normalized);
+        let mut frame = Prepared {
+            width,
+            height,
+            eye,
+            right,
+            up,
+            forward,
+            x_scale: (width_f / height_f) * tan,
+            y_scale: tan,
+            width_f,
+            height_f,
+            epsilon: scene.ray_epsilon(),
+            background: scene.background(),
+            spheres,
+            lights,
+            casters,
+            use_spans: true,
+            #[cfg(feature = "antialias")]
+            antialias: false,
+            #[cfg(feature = "antialias")]
+            pixel,
+            #[cfg(feature = "area-lights")]
+            sphere_lights,
+            normalized,
+            kernel: Kernel::Narrow,
+            narrow: None,
+            narrow_lights: heapless::Vec::new(),
+            _path: PhantomData,
+        };
+        frame.kernel = match frame.prepare_narrow(scene) {
+            Ok(()) => Kernel::Narrow,
+            Err((item, field)) => Kernel::General { item, field },
+        };
+        Ok(frame)
+    }
+
+    /// Pushes each sphere's constants onto `spheres`, in scene order: its offset from the
+    /// `eye`, `r²` and `1/r`, its material's constants ([`Params::of`]) and which optional
+    /// parts of the models they use, and with `antialias` its silhouette (`Outline::of`, from
+    /// `view`: the camera's right and up and the side of a pixel on the image plane).
+    #[inline(always)]
+    fn prepare_spheres(
+        spheres: &mut heapless::Vec<PreparedSphere, S>,
+        scene: &Scene<S, L>,
+        eye: Vec3,
+        view: (Vec3, Vec3, f32),
+    ) {
+        #[cfg(feature = "antialias")]
+        let (right, up, pixel) = view;
+        #[cfg(not(feature = "antialias"))]
+        let _ = view;
         for s in scene.spheres() {
             let params = Params::<f32>::of(&s.material);
             let p = PreparedSphere {
@@ -320,7 +382,14 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             let pushed = spheres.push(p);
             debug_assert!(pushed.is_ok(), "more spheres than the scene holds");
         }
-        let mut lights = heapless::Vec::new();
+    }
+
+    /// Pushes each light's constants onto `lights`, in scene order: a distant light's unit
+    /// direction toward it and arriving colour, a point light's position and power
+    /// (`color · intensity / 4π`), and with `area-lights` a point light with a radius as a
+    /// sphere light.
+    #[inline(always)]
+    fn prepare_lights(lights: &mut heapless::Vec<PreparedLight, L>, scene: &Scene<S, L>) {
         for l in scene.lights() {
             let p = match *l {
                 Light::Distant {
@@ -363,7 +432,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             let pushed = lights.push(p);
             debug_assert!(pushed.is_ok(), "more lights than the scene holds");
         }
-        let mut casters = heapless::Vec::new();
+    }
+
+    /// Pushes onto `casters`, per sphere and light, the other spheres that can shadow it
+    /// ([`Scene::shadow_casters`]).
+    #[inline(always)]
+    fn prepare_casters(casters: &mut heapless::Vec<[u32; L], S>, scene: &Scene<S, L>) {
         for i in 0..scene.spheres().len() {
             let mut per_light = [0u32; L];
             for (mask, light) in per_light.iter_mut().zip(scene.lights()) {
@@ -373,45 +447,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             let pushed = casters.push(per_light);
             debug_assert!(pushed.is_ok(), "more caster masks than spheres");
         }
-        #[cfg(feature = "area-lights")]
-        let sphere_lights = lights
-            .iter()
-            .any(|l| matches!(l, PreparedLight::Sphere { .. }));
-        let normalized = spheres.iter().any(|s| s.normalized);
-        let mut frame = Prepared {
-            width,
-            height,
-            eye,
-            right,
-            up,
-            forward,
-            x_scale: (width_f / height_f) * tan,
-            y_scale: tan,
-            width_f,
-            height_f,
-            epsilon: scene.ray_epsilon(),
-            background: scene.background(),
-            spheres,
-            lights,
-            casters,
-            use_spans: true,
-            #[cfg(feature = "antialias")]
-            antialias: false,
-            #[cfg(feature = "antialias")]
-            pixel,
-            #[cfg(feature = "area-lights")]
-            sphere_lights,
-            normalized,
-            kernel: Kernel::Narrow,
-            narrow: None,
-            narrow_lights: heapless::Vec::new(),
-            _path: PhantomData,
-        };
-        frame.kernel = match frame.prepare_narrow(scene) {
-            Ok(()) => Kernel::Narrow,
-            Err((item, field)) => Kernel::General { item, field },
-        };
-        Ok(frame)
     }
 
     /// Sets up the narrow kernel (see `narrow`) if the frame meets its conditions: every
