@@ -164,6 +164,7 @@ mod narrow_point_shadow;
 mod narrow_precise;
 mod narrow_prepare;
 mod narrow_roots;
+mod narrow_run;
 mod narrow_scale;
 mod narrow_shadow;
 #[cfg(feature = "narrow-precise")]

@@ -23,7 +23,8 @@ use super::edges::EdgeRow;
 use super::kernel::ray;
 #[cfg(feature = "full-width")]
 use super::mul::{mul_ii, mul_iu};
-use super::narrow::{Narrow, NarrowRun, Shaded, NO_TRACK};
+use super::narrow::{Narrow, Shaded};
+use super::narrow_run::{NarrowRun, NO_TRACK};
 #[cfg(not(feature = "full-width"))]
 use super::outline::outline_on_row;
 use super::prepare::{FixedSphere, PreparedFixed};
