@@ -566,7 +566,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 sums.shadow(light_index, record_hits);
                 continue;
             }
-            self.distant_light(surface, (sphere, ns), at, (nl, ld), (d, g, dl), &mut sums);
+            self.distant_light(
+                surface,
+                (sphere, ns),
+                light_index,
+                (nl, ld),
+                (d, g, dl),
+                &mut sums,
+            );
         }
         Narrow::Done(Some(sums.combine(sphere, index)))
     }
@@ -577,7 +584,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// ([`DISTANCE_TEST`]) and the exact ray from the normal (made once per pixel, in
     /// `normal`) for those it leaves.
     #[inline(always)]
-    fn distant_shadowed(
+    pub(super) fn distant_shadowed(
         &self,
         surface: &Surface,
         (sphere, ns): (&FixedSphere, &NarrowSphere),
@@ -624,7 +631,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         &self,
         surface: &Surface,
         (sphere, ns): (&FixedSphere, &NarrowSphere),
-        (light_index, _): (usize, &NarrowLight),
+        light_index: usize,
         (nl, ld): (i32, i32),
         (d, g, dl): (V3<i32>, &Step, &Step),
         sums: &mut Sums,

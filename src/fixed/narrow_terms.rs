@@ -11,9 +11,9 @@
 //! the precise light.
 
 use super::narrow::fast_cosines;
+use super::narrow::PointSeen;
 use super::narrow::Surface;
-use super::narrow::{Casters, PointSeen, DISTANCE_TEST};
-use super::narrow_hit::{fast_t, shift_u32};
+use super::narrow_hit::shift_u32;
 use super::narrow_lobe::{fast_h, fast_lobe, narrow_lobe};
 use super::narrow_roots::sqrt_q30;
 use super::narrow_scale::scale_q15;
@@ -120,7 +120,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 
     /// Distant light `light_index` on a sphere of a normalized model, fast: the classic fast
-    /// stages' cosines and shadow rules, then [`fast_terms`]; [`PointSeen::Precise`] where
+    /// stages' cosines and shadow stage (`distant_shadowed`), then [`fast_terms`]; [`PointSeen::Precise`] where
     /// the fast lobe does not serve (`fast_lobe`).
     #[inline(never)]
     fn distant_terms(
@@ -132,36 +132,16 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         (g, dl): (i64, i64),
     ) -> PointSeen {
         let Surface {
-            index,
-            nv,
-            sigma,
-            sigma2,
-            ..
+            nv, sigma, sigma2, ..
         } = *surface;
         let Some(FixedLight::Distant { arriving, .. }) = self.lights.get(light_index) else {
             return PointSeen::Precise;
         };
         let arriving = arriving.map(|c| c.to_bits());
         let (nl, ld) = fast_cosines(dl, (sigma, sigma2, nv), g, ns.g_shift as u32);
-        if nl < 0 && (nl * nl) as u32 > ns.shadow_limit {
+        let at = (light_index, light);
+        if self.distant_shadowed(surface, (sphere, ns), at, (nl, d), &mut None) {
             return PointSeen::Blocked;
-        }
-        if light.casters != 0 && nl < light.ahead && (nl * nl) as u32 <= light.reach {
-            let got = if DISTANCE_TEST {
-                self.distant_casters(light_index, light.casters, (fast_t(ns, nv), d, sigma))
-            } else {
-                Casters::Left(light.casters)
-            };
-            let left = match got {
-                Casters::Blocked => return PointSeen::Blocked,
-                Casters::Left(left) => left,
-            };
-            if left != 0 {
-                let n = self.narrow_normal(sphere, ns, d, sigma, nv);
-                if self.narrow_blocked(index, n, light_index, left) {
-                    return PointSeen::Blocked;
-                }
-            }
         }
         let (h, trusted) = fast_h(sphere.blinn(), nl, nv, ld);
         let lobes = if h >= ns.cutoff {
