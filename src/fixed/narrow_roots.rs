@@ -1,7 +1,10 @@
 //! The narrow kernel's table roots ([`super::narrow`]): `σ = 1/|d|` from `|d|²`
 //! ([`sigma_of`]), `1/√x` ([`rsqrt`]) and `√x` of a Q30 value ([`sqrt_q30`]), each a small
 //! table made at compile time and one interpolation or Newton step, with the error bound its
-//! test holds it to. The precise forms, in 30-bit fractions, are [`super::roots`]'.
+//! test holds it to. The precise forms, in 30-bit fractions, are [`super::roots`]', and
+//! [`rsqrt`] starts from their table (one table of `1/√u` in the crate).
+
+use super::roots::initial;
 
 /// Bins of [`SIGMA_TABLE`] per unit of `|d|²`.
 const SIGMA_BINS: u32 = 256;
@@ -40,27 +43,6 @@ pub(super) fn sigma_of(a: i64) -> (i32, u32) {
     ((s30 >> 15) as i32, (s16 * s16 + (1 << 15)) >> 16)
 }
 
-/// Entries of [`RSQRT_TABLE`]: one per top-8-bit pattern of a `u32`.
-const BINS: usize = 256;
-
-/// `2¹⁵/√m` at the centre of each bin of `m` in `[¼, 1)`, Q15 (below `2¹⁶`), indexed by
-/// the top 8 bits of `m` (`64..=255`); the entries below 64, which a normalized value never
-/// reaches, repeat bin 64's, so every `u32` indexes it without a check.
-static RSQRT_TABLE: [u16; BINS] = rsqrt_table();
-
-const fn rsqrt_table() -> [u16; BINS] {
-    let mut table = [0u16; BINS];
-    let mut i = 0;
-    while i < BINS {
-        // Bin `64 + j` covers m in [(64 + j)/256, (65 + j)/256); its centre is
-        // (2j + 129)/512, and 2¹⁵/√centre = √(2³⁹/(2j + 129)).
-        let j = i.saturating_sub(64) as u64;
-        table[i] = ((1u64 << 39) / (2 * j + 129)).isqrt() as u16;
-        i += 1;
-    }
-    table
-}
-
 /// `1/√x` for `x > 0` as `(y, e)`: `1/√x ≈ y·2^-e`, `y` in about `[2¹⁵, 2¹⁶]`, within
 /// `1.5·2⁻¹⁵` relative: a table lookup and one Newton step `y·(3 − m·y²)/2`.
 #[inline(always)]
@@ -73,10 +55,9 @@ pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
 #[inline(always)]
 fn rsqrt_normalized(m: u32) -> u32 {
     debug_assert!(m >= 1 << 30, "m = {m:#x} is not normalized");
-    let y0 = RSQRT_TABLE
-        .get((m >> 24) as usize)
-        .copied()
-        .unwrap_or(1 << 15) as u32;
+    // The full-width roots' table of `2³¹/√u` at each bin's centre (`u = 4m`), to 16 bits:
+    // `2¹⁵/√m` at the centre, rounded down.
+    let y0 = initial(m) >> 15;
     // m·y0² as Q30 from their top 16 bits (y0² Q30 → Q14, m Q32 → Q16): about 2³⁰.
     let p = ((y0 * y0 + (1 << 15)) >> 16) * (m.saturating_add(1 << 15) >> 16);
     let corr = (3u32 << 30).saturating_sub(p);
@@ -154,6 +135,18 @@ pub(super) fn even_leading_zeros(x: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn rsqrt_starts_from_two_to_the_15_over_the_root_of_each_bins_centre() {
+        // Bin `64 + j` of the top byte of a normalized `m` covers [(64 + j)/256, (65 + j)/256):
+        // the start is 2¹⁵/√centre rounded down, √(2³⁹/(2j + 129)).
+        for top in 64u32..=255 {
+            let want = ((1u64 << 39) / (2 * (top as u64 - 64) + 129)).isqrt() as u32;
+            for m in [top << 24, (top << 24) | 0x00ff_ffff] {
+                assert_eq!(initial(m) >> 15, want, "bin {top}");
+            }
+        }
+    }
 
     #[test]
     fn rsqrt_within_one_and_a_half_steps_of_two_to_the_minus_15() {

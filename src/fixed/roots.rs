@@ -18,8 +18,11 @@
 
 use super::mul::{leading_zeros, mul_uu};
 
-/// Entries of the table: one per top-8-bit pattern `64..=255` of a value in `[1, 4)` (U2F30).
-const BINS: usize = 192;
+/// Entries of the table: one per top-8-bit pattern of a `u32`. A value in `[1, 4)` (U2F30)
+/// reads `64..=255`; the entries below 64, which it never reaches, repeat bin 64's, so that
+/// the top byte indexes the table with no check (the narrow kernel's `rsqrt` reads it per
+/// pixel).
+const BINS: usize = 256;
 
 /// `2³¹/√u` at the centre of each bin, U1F31 (`(2³⁰, 2³¹]`).
 static INV_SQRT_TABLE: [u32; BINS] = inv_sqrt_table();
@@ -28,8 +31,9 @@ const fn inv_sqrt_table() -> [u32; BINS] {
     let mut table = [0u32; BINS];
     let mut i = 0;
     while i < BINS {
-        // Bin `64 + i` covers u in [(64 + i)/64, (65 + i)/64); its centre in U2F30.
-        let centre = (((64 + i) as u64) << 24) + (1 << 23);
+        // Bin `64 + j` covers u in [(64 + j)/64, (65 + j)/64); its centre in U2F30.
+        let j = i.saturating_sub(64) as u64;
+        let centre = ((64 + j) << 24) + (1 << 23);
         // 2³¹/√(centre/2³⁰) = 2⁶¹/√(centre·2³⁰); the rounding error is below 2⁻³¹ relative.
         let root = (centre << 30).isqrt();
         table[i] = ((1u64 << 61) / root) as u32;
@@ -86,12 +90,15 @@ fn top_bits(x: u64) -> (u32, u32) {
     ((normalized >> 32) as u32, half_shift)
 }
 
-/// The table's estimate of `1/√u` for `u` in U2F30, `[1, 4)`.
+/// The table's estimate of `1/√u` for `u` in U2F30, `[1, 4)`, in U1F31: also the narrow
+/// kernel's `rsqrt` (`super::narrow_roots`), which takes its top 16 bits.
 #[inline(always)]
-fn initial(u: u32) -> u32 {
-    let bin = ((u >> 24) as usize).saturating_sub(64);
-    debug_assert!(bin < INV_SQRT_TABLE.len(), "u = {u:#x} is not in [1, 4)");
-    INV_SQRT_TABLE.get(bin).copied().unwrap_or(1 << 30)
+pub(super) fn initial(u: u32) -> u32 {
+    debug_assert!(u >= 1 << 30, "u = {u:#x} is not in [1, 4)");
+    INV_SQRT_TABLE
+        .get((u >> 24) as usize)
+        .copied()
+        .unwrap_or(1 << 30)
 }
 
 /// Two Newton steps for `1/√u`: `y ← y·(3 − u·y²)/2`, all U1F31 / U2F30 in `u64`.
