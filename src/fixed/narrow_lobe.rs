@@ -7,7 +7,7 @@ use super::exact::{shift_saturating, Exact};
 use super::mul::{mul_ii, mul_iu, mul_uu};
 use super::narrow_roots::rsqrt;
 use super::narrow_scale::high_bits;
-use super::pow::{EXP_TABLE, INV_LN2_F31, LOG_TABLE};
+use super::pow::{exp2_neg_q16, INV_LN2_F31, LOG_TABLE};
 use super::prepare::NarrowSphere;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::V3;
@@ -167,7 +167,7 @@ pub(super) fn fast_lobe(ns: &NarrowSphere, n: Exact, h: u32, trusted: bool) -> O
 /// factor times the whole of `h` in one 32×32→64 product so that `g` keeps `h`'s relative
 /// precision however small `h` is; otherwise from a power of two, the shared 64-entry table
 /// of `log2 m₀` and `ln(1 + δ) ≈ δ − δ²/2 + δ³/3`), `y = n·g` in Q16 (one 32×32→64
-/// product), and `2^-y` from the shared table of `2^(−i/64)` and `e^(−r·ln 2) ≈ 1 − a + a²/2`.
+/// product), and `2^-y` ([`exp2_neg_q16`]).
 /// Within `5.4·10⁻⁵` of `powf` for `n` up to 1250 and `7.2·10⁻⁵` at `10⁴` (`g`'s last bit
 /// times `n` beyond: `5·10⁻³` at `10⁶`; test `narrow_lobe_matches_powf`), a few U1F16 steps,
 /// which is the precision the kernel keeps of a lobe. A fraction of the 64-bit `pow::lobe`'s
@@ -206,16 +206,5 @@ pub(super) fn narrow_lobe(h: u32, n: Exact) -> u32 {
         let log2_m = (log2_m0 >> 5) as i64 + log2_1p as i64; // Q27, in [0, 1)
         (((e as i64) << 27) - log2_m).clamp(0, u32::MAX as i64) as u32
     };
-    let y = shift_saturating(mul_uu(n.mantissa, g), n.exponent - 11); // Q16
-    let k = y >> 16;
-    if k >= 17 {
-        return 0;
-    }
-    let f = y & 0xffff;
-    debug_assert!(((f >> 10) as usize) < EXP_TABLE.len());
-    let base = EXP_TABLE.get((f >> 10) as usize).copied().unwrap_or(0) >> 15; // Q16, ≤ 2¹⁶
-    let a = ((f & 1023) * 45_426) >> 16; // r·ln 2 in Q16, < 2¹⁰
-    let e = (1 << 16) - a + ((a * a) >> 17); // e^(−a), Q16
-    let v = (base * (e >> 1)) >> 15; // ≤ 2¹⁶
-    (v + ((1 << k) >> 1)) >> k
+    exp2_neg_q16(shift_saturating(mul_uu(n.mantissa, g), n.exponent - 11))
 }

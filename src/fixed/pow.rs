@@ -29,8 +29,9 @@
 //! Cost: about 12 32×32→64-bit multiplications, two leading-zero counts, no division.
 //!
 //! [`lobe`] is the full-width kernel's (feature `full-width`). The narrow kernel's lobe
-//! (`narrow::narrow_lobe`) takes the same route in 32-bit arithmetic and shares the tables,
-//! which are all a build without `full-width` holds of this module.
+//! (`narrow_lobe::narrow_lobe`) takes the same route in 32-bit arithmetic, with the tables and
+//! its `2^-y` from here ([`exp2_neg_q16`]), which are all a build without `full-width` holds
+//! of this module.
 //!
 //! # Measured error
 //!
@@ -208,6 +209,30 @@ fn exp2_neg(y: u32) -> u32 {
     v.min(ONE_F31) as u32
 }
 
+/// The bound of [`exp2_neg_q16`]'s error, in U1F16 steps (`2⁻¹⁶`), against `2^-y` of the
+/// same `y` (test `exp2_neg_q16_within_its_bound`). Only the tests read it.
+#[cfg_attr(not(test), allow(dead_code))]
+pub(super) const EXP2_NEG_Q16_STEPS: f64 = 3.5;
+
+/// `2^-y` in U1F16 (`1 << 16` is 1), rounded, for `y` in Q16: the narrow kernel's, in 32-bit
+/// arithmetic. `2^-k` as a shift, `2^(−i/64)` from [`EXP_TABLE`]'s top 17 bits, and
+/// `e^(−r·ln 2) ≈ 1 − a + a²/2` for the rest `r < 2⁻⁶`; 0 from `y ≥ 17` on, where `2^-y` is
+/// below half a step. Within [`EXP2_NEG_Q16_STEPS`].
+#[inline(always)]
+pub(super) fn exp2_neg_q16(y: u32) -> u32 {
+    let k = y >> 16;
+    if k >= 17 {
+        return 0;
+    }
+    let f = y & 0xffff;
+    debug_assert!(((f >> 10) as usize) < EXP_TABLE.len());
+    let base = EXP_TABLE.get((f >> 10) as usize).copied().unwrap_or(0) >> 15; // Q16, ≤ 2¹⁶
+    let a = ((f & 1023) * 45_426) >> 16; // r·ln 2 in Q16, < 2¹⁰
+    let e = (1 << 16) - a + ((a * a) >> 17); // e^(−a), Q16
+    let v = (base * (e >> 1)) >> 15; // ≤ 2¹⁶
+    (v + ((1 << k) >> 1)) >> k
+}
+
 /// `(round(2³¹/m₀), log2(m₀) in U0F32)` for `m₀ = 1 + i/64`.
 pub(super) static LOG_TABLE: [(u32, u32); 64] = log_table();
 /// `round(2³¹·2^(−i/64))`.
@@ -280,6 +305,22 @@ mod tests {
 
     fn to_h(cos: f64) -> u64 {
         ((1.0 - cos) * ONE_F61 as f64) as u64
+    }
+
+    #[test]
+    fn exp2_neg_q16_within_its_bound() {
+        let mut worst = 0.0f64;
+        // Every y below 17 in steps that visit each table bin at many places, and its end.
+        for y in (0..17u32 << 16)
+            .step_by(7)
+            .chain([(17 << 16) - 1, 17 << 16, u32::MAX])
+        {
+            let want = (-(y as f64) / 65536.0).exp2() * 65536.0;
+            worst = worst.max((exp2_neg_q16(y) as f64 - want).abs());
+        }
+        println!("exp2_neg_q16: worst {worst:.3} steps of 2^-16");
+        assert!(worst <= EXP2_NEG_Q16_STEPS, "{worst}");
+        assert_eq!(exp2_neg_q16(0), 1 << 16);
     }
 
     #[test]
