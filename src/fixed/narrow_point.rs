@@ -28,11 +28,11 @@
 //! (the terms above are that long), as the square of `|Q|/|P − X|` ([`point_error`]). The
 //! prepare sets, per sphere and light, the largest `(|Q|/|P − X|)²` for which the diffuse
 //! term stays within one level (a bound: the errors measured are far below) and the cosines within `2⁻⁹`
-//! (`NarrowLight::point_ratio`; a pixel above it, looking nearly toward the light from far
+//! (`PointConstants::ratio`; a pixel above it, looking nearly toward the light from far
 //! away, takes the precise light), and from that bound the fast lobe's limit
-//! (`NarrowLight::point_fast`), as `fast_lobe_max` is the distant lights'. A pixel whose lobe
+//! (`PointConstants::fast`), as `fast_lobe_max` is the distant lights'. A pixel whose lobe
 //! is above that limit, or whose Blinn-Phong half vector is ill-conditioned, takes
-//! `precise_light` for the light. Where a caster's cone ([`NarrowLight::cone`]) holds the
+//! `precise_light` for the light. Where a caster's cone ([`PointConstants::cone`](super::prepare::PointConstants::cone)) holds the
 //! hit, the shadow ray toward the light is the precise one (`precise_light`'s, from the
 //! precise `t`).
 
@@ -49,9 +49,9 @@ use super::narrow_terms::fast_terms;
 use super::prepare::{FixedLight, FixedSphere, NarrowLight, NarrowSphere, PreparedFixed};
 use super::vector::{Len, V3};
 
-/// The margin (in cosine) by which [`NarrowLight::cone`]'s threshold is lowered: many times
+/// The margin (in cosine) by which [`PointConstants::cone`](super::prepare::PointConstants::cone)'s threshold is lowered: many times
 /// the error of the direction it is compared with, which the prepare holds below `2⁻⁹` where
-/// the fast point light serves (`point_fast`), and of the `f32` arithmetic that makes it.
+/// the fast point light serves (`PointConstants::fast`), and of the `f32` arithmetic that makes it.
 pub(crate) const CONE_MARGIN: f32 = 1.0 / 128.0;
 
 /// The error bound of the fast point-light cosines per unit of [`point_error`]'s factor, in
@@ -153,7 +153,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         d: V3<i32>,
         (g, dl): (i64, i64),
     ) -> PointSeen {
-        if light.point_fast == 0 {
+        if light.point.fast == 0 {
             return PointSeen::Precise;
         }
         let (Some(FixedLight::Point { power, position }), Some(point)) =
@@ -169,8 +169,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         );
         let q = point.distance;
         let fast = point_cosines(ns, surface.nv, cosines, q);
-        // (|Q|/|P − X|)² at most `point_ratio` (Q4): the error bound the prepare allowed for.
-        if fast.q2 >> 4 > (fast.dist2 >> 8) * light.point_ratio as u32 {
+        // (|Q|/|P − X|)² at most `point.ratio` (Q4): the error bound the prepare allowed for.
+        if fast.q2 >> 4 > (fast.dist2 >> 8) * light.point.ratio as u32 {
             return PointSeen::Precise;
         }
         let (nl, ld) = (fast.nl, fast.ld);
@@ -185,7 +185,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 return PointSeen::Precise;
             }
             let lobe = narrow_lobe(h, sphere.shininess);
-            let max = light.point_fast;
+            let max = light.point.fast;
             if max < u16::MAX && (h > 1 << 30 || lobe > max as u32) {
                 return PointSeen::Precise;
             }

@@ -1,6 +1,6 @@
 //! The fast point light's per-frame constants ([`super::narrow_point`]), made by the narrow
 //! prepare ([`super::narrow_prepare`]) for each sphere and point light: where the fast point
-//! light serves on the sphere and its lobe's limit (`point_fast`), and the sphere's cone as a
+//! light serves on the sphere and its lobe's limit (`PointConstants::fast`), and the sphere's cone as a
 //! caster seen from the light (`point_cone`), for the shadow filters
 //! ([`super::narrow_point_shadow`]).
 
@@ -13,7 +13,7 @@ use super::roots::{inv_sqrt, sqrt};
 use super::vector::{each3, Len, V3};
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
-    /// [`NarrowLight::cone`](super::prepare::NarrowLight::cone) of sphere `own` for the point light at `position`: the unit
+    /// [`PointConstants::cone`](super::prepare::PointConstants::cone) of sphere `own` for the point light at `position`: the unit
     /// vector from the light toward the centre and the cosine of the cone's half-angle,
     /// `√(1 − (ρ/|C − P|)²)` with `ρ` the radius widened by `2ε`, a raw unit and `2⁻¹²`,
     /// lowered by [`CONE_MARGIN`]; every point passes where the light is within `ρ` of the
@@ -39,7 +39,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         ]
     }
 
-    /// [`NarrowLight::point_fast`](super::prepare::NarrowLight::point_fast) and [`NarrowLight::point_ratio`](super::prepare::NarrowLight::point_ratio) of sphere `i` for light
+    /// [`PointConstants::fast`](super::prepare::PointConstants::fast), [`PointConstants::ratio`](super::prepare::PointConstants::ratio) and `slack` of sphere `i` for light
     /// `light` (0 unless it is a point light), from the sphere's largest exponent `n` and
     /// its lobes' `scale` (`ks`, or the normalized models' sum of weights). With `F` the
     /// factor of [`point_error`] (`(1 + |Q|/g)²`), the cosines are within `4F` steps of

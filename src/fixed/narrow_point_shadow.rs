@@ -7,11 +7,11 @@
 //!
 //! - **the cone**: a ray from the hit `X` toward the light at `P` meets a caster only if
 //!   the direction from `P` toward `X` lies in the cone from `P` that holds the caster
-//!   ([`NarrowLight::cone`], widened by a margin): one dot product of two Q15 vectors;
+//!   ([`PointConstants::cone`](super::prepare::PointConstants::cone), widened by a margin): one dot product of two Q15 vectors;
 //! - **the distance**: with `v = C − X` and `L̂` the unit vector toward the light, the
 //!   caster is ahead along the ray by `b = v·L̂` and off it by `|v − b·L̂|`. Allowing a
 //!   margin `m` for the fast `X` and `L̂` (`t/2¹⁰` for `X`, the sphere's bound on `L̂`'s
-//!   error, [`NarrowLight::point_slack`], times the caster's distance, and `2ε` for the
+//!   error, [`PointConstants::slack`](super::prepare::PointConstants::slack), times the caster's distance, and `2ε` for the
 //!   ray's lift off the surface), the caster is clear if it lies behind the hit
 //!   (`b < −(r + m)`), beyond the light (`b − r − m > |P − X|`) or off the ray
 //!   (`|v − b·L̂| > r + m`), or if the ray moves away from its centre from a point outside
@@ -230,7 +230,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             if light.casters & (1 << k) == 0 {
                 continue;
             }
-            let Some(cone) = lights.get(light_index).map(|l| l.cone) else {
+            let Some(cone) = lights.get(light_index).map(|l| l.point.cone) else {
                 continue;
             };
             let [a0, a1, a2, threshold] = cone;
@@ -243,7 +243,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 continue;
             }
             let v = each3(|i| s.center[i].to_bits().wrapping_sub(x[i]));
-            let margin = (base, light.point_slack as i32);
+            let margin = (base, light.point.slack as i32);
             match distance_test(v, away, s.radius.to_bits(), margin, beyond) {
                 Verdict::Clear => left &= !(1 << k),
                 Verdict::Blocks => return Casters::Blocked,

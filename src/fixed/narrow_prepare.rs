@@ -436,7 +436,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .get_mut(i)
                 .and_then(|l| l.get_mut(light_index))
             {
-                (l.point_fast, l.point_ratio, l.point_slack) = (fast, ratio, slack);
+                (l.point.fast, l.point.ratio, l.point.slack) = (fast, ratio, slack);
             }
         }
     }
@@ -570,13 +570,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             reach,
             across,
             #[cfg(feature = "narrow-precise")]
-            point_fast: 0,
-            #[cfg(feature = "narrow-precise")]
-            point_ratio: 0,
-            #[cfg(feature = "narrow-precise")]
-            point_slack: 0,
-            #[cfg(feature = "narrow-precise")]
-            cone,
+            point: super::prepare::PointConstants {
+                cone,
+                ..Default::default()
+            },
         })
     }
 

@@ -6,7 +6,7 @@
 //! precise form): the lobes' weighted sum `Σ wₖ·lobeₖ` times `N·L`, Schlick's
 //! `F = F₀ + (1 − F₀)·(1 − L·H)⁵` per channel with `L·H = |L + V|/2 = √((1 − L·D̂)/2)`,
 //! and the diffuse `N·L`, times `1 − F` where the model loses it. A pixel takes them where
-//! the fast lobe serves (the sphere's `fast_lobe_max`, or a point light's `point_fast`,
+//! the fast lobe serves (the sphere's `fast_lobe_max`, or a point light's `PointConstants::fast`,
 //! which the prepare makes from the weights' sum and the largest exponent); the others take
 //! the precise light.
 

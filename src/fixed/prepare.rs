@@ -159,24 +159,30 @@ pub(crate) struct NarrowLight {
     /// light's [`PreparedFixed::across`]: the constants of the quick caster test and of the
     /// distance test's first stage (`PreparedFixed::distant_casters`).
     pub across: [i32; 2],
-    /// For a point light, where the fast point light (`narrow_point`) shades this sphere:
-    /// 0 nowhere; otherwise the fast lobe's limit, as `NarrowSphere::fast_lobe_max` is for
-    /// the distant lights (`u16::MAX`: wherever the lobe is not 0).
+    /// For a point light, the fast point light's constants on this sphere.
     #[cfg(feature = "narrow-precise")]
-    pub point_fast: u16,
-    /// For a point light, the largest `(|Q|/|P − X|)²` (Q4) at which the fast point light
-    /// serves on this sphere (see `narrow_point`), at most 255.
-    #[cfg(feature = "narrow-precise")]
-    pub point_ratio: u8,
-    /// For a point light, the bound (Q15) of the error of the fast direction toward it on
-    /// this sphere, for the shadow filters' margins (`narrow_point_shadow`).
-    #[cfg(feature = "narrow-precise")]
-    pub point_slack: u8,
-    /// For a point light, this sphere as a caster: the unit vector from the light toward its
-    /// centre (Q15) and the cosine (Q15, lowered by a margin) of the cone from the light that
-    /// holds it. A shadow ray toward the light meets the sphere only from a point in that
-    /// cone (`narrow_point`'s filter). A threshold of `i16::MIN` passes every point.
-    #[cfg(feature = "narrow-precise")]
+    pub point: PointConstants,
+}
+
+/// A sphere's constants for a point light's fast stages (`narrow_point`,
+/// `narrow_point_shadow`; feature `narrow-precise`), made by `narrow_point_prepare`.
+#[cfg(feature = "narrow-precise")]
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct PointConstants {
+    /// Where the fast point light shades this sphere: 0 nowhere; otherwise the fast lobe's
+    /// limit, as `NarrowSphere::fast_lobe_max` is for the distant lights (`u16::MAX`:
+    /// wherever the lobe is not 0).
+    pub fast: u16,
+    /// The largest `(|Q|/|P − X|)²` (Q4) at which the fast point light serves on this
+    /// sphere (see `narrow_point`), at most 255.
+    pub ratio: u8,
+    /// The bound (Q15) of the error of the fast direction toward the light on this sphere,
+    /// for the shadow filters' margins (`narrow_point_shadow`).
+    pub slack: u8,
+    /// This sphere as a caster: the unit vector from the light toward its centre (Q15) and
+    /// the cosine (Q15, lowered by a margin) of the cone from the light that holds it. A
+    /// shadow ray toward the light meets the sphere only from a point in that cone
+    /// (`narrow_point_shadow`'s filter). A threshold of `i16::MIN` passes every point.
     pub cone: [i16; 4],
 }
 
