@@ -155,26 +155,36 @@ impl PngFile {
         })
     }
 
-    fn write_with(
+    /// Replaces the file's contents with an encoded PNG (an animated one from
+    /// [`crate::apng::AnimatedPng`], say).
+    pub fn write_encoded(self, bytes: &[u8]) -> io::Result<()> {
+        self.replace(|out| out.write_all(bytes))
+    }
+
+    fn write_with(self, width: u32, height: u32, row: impl Fn(usize, &mut [u8])) -> io::Result<()> {
+        self.replace(|out| write_rgb_png(out, width, height, row))
+    }
+
+    /// Empties the file and lets `write` fill it; a file this created is removed again if
+    /// that fails.
+    fn replace(
         mut self,
-        width: u32,
-        height: u32,
-        row: impl Fn(usize, &mut [u8]),
+        write: impl FnOnce(&mut BufWriter<&mut File>) -> io::Result<()>,
     ) -> io::Result<()> {
         let Some(mut file) = self.file.take() else {
             return Err(io::Error::other("the PNG file was already written"));
         };
-        let write = || {
+        let fill = || {
             // A regular file is emptied first; a pipe or a device (`-o /dev/stdout`) cannot be.
             if file.metadata()?.is_file() {
                 file.set_len(0)?;
                 file.rewind()?;
             }
             let mut out = BufWriter::new(&mut file);
-            write_rgb_png(&mut out, width, height, row)?;
+            write(&mut out)?;
             out.flush()
         };
-        let result = write();
+        let result = fill();
         if result.is_err() && self.created {
             let _ = std::fs::remove_file(&self.path);
         }

@@ -6,6 +6,11 @@
 //!                   [-o spheres.png] [--threads N] [--width W] [--height H] [--repeat N] [--antialias]
 //! shadeline compare [SCENE.toml | --preset NAME] [-o compare.png] [--threads N] [--width W] [--height H] [--antialias]
 //! shadeline plot    [SCENE.toml | --preset NAME] [--sphere N] [--incidence DEG] [-o lobes.svg]
+//! shadeline show    [SCENE.toml | --preset NAME] [--fb /dev/fb0] [--path scalar|simd4|simd8|simd|fixed]
+//!                   [--threads N] [--width W] [--height H] [--antialias]
+//! shadeline animate [SCENE.toml | --preset NAME] (--orbit-light I | --move-sphere I --to X,Y,Z)
+//!                   [--frames N] [--fps F] [--path scalar|simd4|simd8|simd|fixed] [-o animation.png]
+//!                   [--threads N] [--width W] [--height H] [--antialias]
 //! ```
 //!
 //! `render` uses the widest SIMD path unless `--path` names another (its frames are
@@ -29,10 +34,19 @@
 //! writes after, so that a `--sphere` the scene does not have (exit code 2, naming
 //! `--sphere` and the number of spheres) leaves an existing SVG alone; an `--incidence`
 //! outside `[0, 90)` is refused with the other bad arguments, exit code 2.
+//!
+//! `show` draws the frame into a Linux framebuffer device at the screen's visible resolution
+//! (`--width`/`--height`: a frame of that size, centred and cropped); a device that is
+//! missing, is not a framebuffer or has a format shadeline does not write is an error naming
+//! it, exit code 2 (see `shadeline_harness::fb_device`). `animate` writes an animated PNG of
+//! a light orbiting the vertical axis or a sphere moving to a point
+//! (`shadeline_harness::animation`), and prints per frame what a display would be sent.
 
 use clap::builder::PossibleValuesParser;
-use clap::{Args, Parser, Subcommand};
-use shadeline::{Rgb888, MAX_DIMENSION};
+use clap::{ArgGroup, Args, Parser, Subcommand};
+use shadeline::{Rgb565, Rgb888, Vec3, MAX_DIMENSION};
+use shadeline_harness::animation::{self, Motion};
+use shadeline_harness::apng::AnimatedPng;
 use shadeline_harness::compare::{self, Row};
 use shadeline_harness::edges::{self, EdgeRow};
 use shadeline_harness::image::PngFile;
@@ -107,6 +121,56 @@ enum Command {
         #[arg(short, long, default_value = "lobes.svg")]
         output: PathBuf,
     },
+    /// Draw a scene into a Linux framebuffer (a panel, an fbtft SPI display) at the screen's
+    /// resolution; with --width/--height, a frame of that size, centred and cropped.
+    Show {
+        #[command(flatten)]
+        input: Input,
+        /// The framebuffer device. Written formats: RGB565, BGR565, RGB888, BGR888,
+        /// XRGB8888, XBGR8888 and the like (16, 24 or 32 bits, 5-6-5 or 8-8-8 channels).
+        #[arg(long, value_name = "DEVICE", default_value = "/dev/fb0")]
+        fb: PathBuf,
+        /// The path, as for `render`.
+        #[arg(long, default_value = paths::SIMD_ALIAS.0, value_parser = PossibleValuesParser::new(paths::names()))]
+        path: String,
+        /// Anti-alias the silhouettes analytically, as `antialias = true` under `[image]` does.
+        #[arg(long)]
+        antialias: bool,
+    },
+    /// Render an animation to an animated PNG: a light orbiting the vertical axis through the
+    /// look-at point, or a sphere moving in a straight line; prints per frame what a display
+    /// would be sent.
+    #[command(group(ArgGroup::new("motion").required(true).args(["orbit_light", "move_sphere"])))]
+    Animate {
+        #[command(flatten)]
+        input: Input,
+        /// Orbit light I (from 0) once around the camera's up axis through its look-at point:
+        /// a distant light's direction turns, a point light's position.
+        #[arg(long, value_name = "I", allow_negative_numbers = true, value_parser = light_index)]
+        orbit_light: Option<usize>,
+        /// Move sphere I (from 0) at constant speed from its place to --to, reached at the
+        /// last frame.
+        #[arg(long, value_name = "I", requires = "to", allow_negative_numbers = true, value_parser = sphere_index)]
+        move_sphere: Option<usize>,
+        /// Where --move-sphere's sphere ends: x,y,z in scene units.
+        #[arg(long, value_name = "X,Y,Z", requires = "move_sphere", allow_negative_numbers = true, value_parser = point)]
+        to: Option<Vec3>,
+        /// Frames in the animation.
+        #[arg(long, default_value_t = 30, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
+        frames: u16,
+        /// Frames per second the animated PNG plays at.
+        #[arg(long, default_value_t = 25, allow_negative_numbers = true, value_parser = clap::value_parser!(u16).range(1..))]
+        fps: u16,
+        /// The path, as for `render`.
+        #[arg(long, default_value = paths::SIMD_ALIAS.0, value_parser = PossibleValuesParser::new(paths::names()))]
+        path: String,
+        /// Where to write the animated PNG.
+        #[arg(short, long, default_value = "animation.png")]
+        output: PathBuf,
+        /// Anti-alias the silhouettes analytically, as `antialias = true` under `[image]` does.
+        #[arg(long)]
+        antialias: bool,
+    },
 }
 
 /// Which scene: a file, a preset, or (with neither) the built-in exponent series.
@@ -152,6 +216,27 @@ fn sphere_index(value: &str) -> Result<usize, String> {
     value
         .parse()
         .map_err(|_| "a sphere is a whole number, from 0 for the scene's first sphere".to_string())
+}
+
+/// `--orbit-light`: a light's place in the scene, from 0. Whether the scene has it is checked
+/// once the scene is read.
+fn light_index(value: &str) -> Result<usize, String> {
+    value
+        .parse()
+        .map_err(|_| "a light is a whole number, from 0 for the scene's first light".to_string())
+}
+
+/// `--to`: a point `x,y,z` in scene units.
+fn point(value: &str) -> Result<Vec3, String> {
+    let refused = || format!("a point is x,y,z: three numbers separated by commas, not `{value}`");
+    let numbers: Vec<f32> = value
+        .split(',')
+        .map(|n| n.trim().parse::<f32>().map_err(|_| refused()))
+        .collect::<Result<_, _>>()?;
+    match numbers[..] {
+        [x, y, z] if numbers.iter().all(|n| n.is_finite()) => Ok(Vec3::new(x, y, z)),
+        _ => Err(refused()),
+    }
 }
 
 /// `--incidence`: degrees from the normal, in `[0, 90)`.
@@ -245,6 +330,37 @@ fn main() -> ExitCode {
             incidence,
             output,
         } => run_plot(&scene, sphere, incidence, &output),
+        Command::Show {
+            input,
+            fb,
+            path,
+            antialias,
+        } => run_show(&input, &fb, &path, antialias),
+        Command::Animate {
+            input,
+            orbit_light,
+            move_sphere,
+            to,
+            frames,
+            fps,
+            path,
+            output,
+            antialias,
+        } => {
+            // clap requires one of the two, and --to with --move-sphere.
+            let motion = match (orbit_light, move_sphere, to) {
+                (Some(light), _, _) => Ok(Motion::OrbitLight(light)),
+                (None, Some(sphere), Some(to)) => Ok(Motion::MoveSphere { sphere, to }),
+                _ => Err(Failure::input(
+                    "error: give --orbit-light I, or --move-sphere I with --to X,Y,Z".into(),
+                )),
+            };
+            let play = Playback {
+                frames: u32::from(frames),
+                fps,
+            };
+            motion.and_then(|m| run_animate(&input, m, play, &path, (&output, antialias)))
+        }
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
@@ -543,4 +659,195 @@ fn run_plot(
         output.display()
     );
     Ok(())
+}
+
+/// Draws the scene into the framebuffer at `device` (see [`shadeline_harness::fb_device`]):
+/// at the screen's visible size, or at `--width`/`--height` centred on it and cropped to it.
+#[cfg(target_os = "linux")]
+fn run_show(
+    input: &Input,
+    device: &std::path::Path,
+    path_name: &str,
+    antialias: bool,
+) -> Result<(), Failure> {
+    use shadeline_harness::fb_device::Device;
+    use shadeline_harness::fb_pixels::{centred, write_frame, Depth};
+    let mut file = input.scene.load()?;
+    let path: Path = paths::find(path_name)
+        .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
+    let mut fb = Device::open(device).map_err(|e| Failure::input(e.to_string()))?;
+    let screen = fb.screen;
+    file.width = input.width.unwrap_or(screen.size.0);
+    file.height = input.height.unwrap_or(screen.size.1);
+    let (w, h) = (file.width, file.height);
+    check_size(&file.scene, w, h).map_err(|e| {
+        Failure::input(format!("error: {}: a {w}x{h} frame: {e}", device.display()))
+    })?;
+    let options = Input::options(&file, antialias);
+    let frame = (path.prepare)(&file.scene, w, h, options)
+        .map_err(|e| Failure::input(format!("error: {e}")))?;
+    let window = centred((w, h), screen.size, screen.origin);
+    let threads = input.threads();
+    let failed = |e: shadeline::RenderError| Failure::input(format!("error: {e}"));
+    let start = Instant::now();
+    let written = {
+        let _bar = Progress::start("rendering", u64::from(h));
+        match screen.format.depth() {
+            Ok(Depth::Bits565) => {
+                let mut pixels = new_frame::<Rgb565>(w, h)
+                    .map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
+                frame
+                    .render_rgb565_into(&mut pixels, threads)
+                    .map_err(failed)?;
+                write_frame(fb.memory(), &screen.format, &pixels, w, window)
+            }
+            Ok(Depth::Bits888) => {
+                let mut pixels = new_frame::<Rgb888>(w, h)
+                    .map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
+                frame
+                    .render_rgb_into(&mut pixels, threads)
+                    .map_err(failed)?;
+                write_frame(fb.memory(), &screen.format, &pixels, w, window)
+            }
+            // Device::open has refused the formats it does not write.
+            Err(e) => Err(e.into()),
+        }
+    };
+    written.map_err(|e| Failure::input(format!("{}: error: {e}", device.display())))?;
+    say!(
+        "{w}x{h} {} in {:.2} ms -> {} ({}: {}x{} {}, line length {} bytes), {}",
+        path.name,
+        start.elapsed().as_secs_f64() * 1e3,
+        device.display(),
+        fb.id(),
+        screen.size.0,
+        screen.size.1,
+        screen.format.name(),
+        screen.format.line_length,
+        placement(window, screen.origin)
+    );
+    Ok(())
+}
+
+/// Where a frame went on the screen: `at (x, y)` of the visible area, and `cropped to W×H`
+/// when only part of it fits.
+#[cfg(target_os = "linux")]
+fn placement(window: shadeline_harness::fb_pixels::Window, origin: (u32, u32)) -> String {
+    let (x, y) = (window.to.0 - origin.0, window.to.1 - origin.1);
+    let mut text = format!("at ({x}, {y})");
+    if window.from != (0, 0) {
+        text += &format!(", cropped to {}x{}", window.size.0, window.size.1);
+    }
+    text
+}
+
+/// `show` on a system without Linux framebuffers.
+#[cfg(not(target_os = "linux"))]
+fn run_show(
+    _input: &Input,
+    device: &std::path::Path,
+    _path_name: &str,
+    _antialias: bool,
+) -> Result<(), Failure> {
+    Err(Failure::input(format!(
+        "{}: error: `show` draws into a Linux framebuffer device, and this system is not Linux",
+        device.display()
+    )))
+}
+
+/// How an animation plays: its frames, and how many a second.
+#[derive(Clone, Copy, Debug)]
+struct Playback {
+    frames: u32,
+    fps: u16,
+}
+
+/// Renders `motion` over `play.frames` frames to an animated PNG, printing a line per frame
+/// ([`frame_report`]).
+fn run_animate(
+    input: &Input,
+    motion: Motion,
+    play: Playback,
+    path_name: &str,
+    (output, antialias): (&std::path::Path, bool),
+) -> Result<(), Failure> {
+    let file = input.load()?;
+    let path: Path = paths::find(path_name)
+        .ok_or_else(|| Failure::input(format!("error: unknown path `{path_name}`")))?;
+    let (w, h) = (file.width, file.height);
+    let frames = play.frames;
+    // Every frame's scene is made once before the first is rendered, so a motion the core
+    // refuses (a sphere moved out of range) fails at once, naming the frame.
+    let scene_at = |k| {
+        animation::scene_at(&file.scene, motion, k, frames)
+            .map_err(|e| Failure::input(format!("error: {e}")))
+    };
+    for k in 0..frames {
+        scene_at(k)?;
+    }
+    let png = open_output(output)?;
+    let threads = input.threads();
+    let options = Input::options(&file, antialias);
+    let mut rgb = new_frame::<Rgb888>(w, h).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
+    let mut bytes = Vec::new();
+    let encoding = |e: std::io::Error| Failure::output(format!("{}: error: {e}", output.display()));
+    let mut apng = AnimatedPng::new(&mut bytes, w, h, frames, play.fps).map_err(encoding)?;
+    say!(
+        "{frames} frame{} of {w}x{h} on {}, {} fps; {}",
+        if frames == 1 { "" } else { "s" },
+        path.name,
+        play.fps,
+        DAMAGE_NOTE
+    );
+    {
+        let _bar = Progress::start("animating", u64::from(h) * u64::from(frames));
+        for k in 0..frames {
+            let scene = scene_at(k)?;
+            let start = Instant::now();
+            let frame = (path.prepare)(&scene, w, h, options)
+                .map_err(|e| Failure::input(format!("error: frame {k}: {e}")))?;
+            frame
+                .render_rgb_into(&mut rgb, threads)
+                .map_err(|e| Failure::input(format!("error: frame {k}: {e}")))?;
+            let millis = start.elapsed().as_secs_f64() * 1e3;
+            apng.push(&rgb).map_err(encoding)?;
+            say!("{}", frame_report(k, frames, (w, h), millis));
+        }
+    }
+    apng.finish().map_err(encoding)?;
+    png.write_encoded(&bytes).map_err(write_failed(output))?;
+    let full = full_frame_bytes(w, h) * u64::from(frames);
+    say!(
+        "wrote {} ({} bytes, animated PNG); a display is sent {full} bytes for the {frames} \
+         full RGB565 frame{}",
+        output.display(),
+        bytes.len(),
+        if frames == 1 { "" } else { "s" }
+    );
+    Ok(())
+}
+
+/// What the per-frame lines report: full frames only, until the core can say which pixels
+/// can differ between two frames.
+const DAMAGE_NOTE: &str = "bytes per frame are those of a full RGB565 frame (width x height x 2)";
+
+/// The bytes of one full `w × h` RGB565 frame as a display is sent it.
+fn full_frame_bytes(w: u32, h: u32) -> u64 {
+    u64::from(w) * u64::from(h) * 2
+}
+
+/// The line `animate` prints for frame `k` of `frames`: its number, its render time, and the
+/// bytes a display is sent for it as a full RGB565 frame.
+///
+/// DAMAGE FIGURES GO HERE: this is the one place the per-frame report is made. When the core
+/// says which pixels can differ between two frames (its damage between the frame shown and
+/// the next), this is where the damage's pixels and the bytes sent for the damage alone join
+/// the full-frame figure (and [`DAMAGE_NOTE`] changes with it).
+fn frame_report(k: u32, frames: u32, (w, h): (u32, u32), millis: f64) -> String {
+    let width = frames.to_string().len();
+    format!(
+        "frame {:>width$}/{frames}: {millis:7.2} ms, full frame {} bytes",
+        k + 1,
+        full_frame_bytes(w, h)
+    )
 }

@@ -7,8 +7,8 @@
 use crate::rows::{render_rows, render_rows_into, FrameError};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
 use shadeline::{
-    FloatPath, HitRecord, Kernel, Prepared, PreparedFixed, Render, RenderError, Rgb888, Scalar,
-    Simd4, Simd8,
+    FloatPath, HitRecord, Kernel, Pixel, Prepared, PreparedFixed, Render, RenderError, Rgb565,
+    Rgb888, Scalar, Simd4, Simd8,
 };
 
 /// A frame prepared on some path, rendered whole into a new buffer on `threads` threads.
@@ -20,6 +20,9 @@ pub trait Frame: Sync {
     fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, FrameError>;
     /// The frame as 8-bit RGB into an existing buffer of width × height pixels.
     fn render_rgb_into(&self, frame: &mut [Rgb888], threads: usize) -> Result<(), RenderError>;
+    /// The frame as 5-6-5 levels ([`Rgb565`]) into an existing buffer of width × height
+    /// pixels.
+    fn render_rgb565_into(&self, frame: &mut [Rgb565], threads: usize) -> Result<(), RenderError>;
     /// The frame's hit records: which sphere each pixel shows and which lights are blocked.
     fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, FrameError>;
     /// The kernel the frame's rows take, and why.
@@ -36,22 +39,33 @@ impl<R: Render + Sync> Frame for R {
         })
     }
     fn render_rgb_into(&self, frame: &mut [Rgb888], threads: usize) -> Result<(), RenderError> {
-        let expected = self.width() as usize * self.height() as usize;
-        if frame.len() != expected {
-            return Err(RenderError::FrameLength {
-                expected,
-                got: frame.len(),
-            });
-        }
-        render_rows_into(frame, self.width(), threads, |y, row| {
-            self.render_line(y, row)
-        })
+        render_into(self, frame, threads)
+    }
+    fn render_rgb565_into(&self, frame: &mut [Rgb565], threads: usize) -> Result<(), RenderError> {
+        render_into(self, frame, threads)
     }
     fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, FrameError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
             self.render_line(y, row)
         })
     }
+}
+
+/// Renders every row of `frame` (which must be the frame's width × height) on `threads`
+/// threads.
+fn render_into<R: Render + Sync, P: Pixel + Send>(
+    r: &R,
+    frame: &mut [P],
+    threads: usize,
+) -> Result<(), RenderError> {
+    let expected = r.width() as usize * r.height() as usize;
+    if frame.len() != expected {
+        return Err(RenderError::FrameLength {
+            expected,
+            got: frame.len(),
+        });
+    }
+    render_rows_into(frame, r.width(), threads, |y, row| r.render_line(y, row))
 }
 
 /// How a frame is rendered beyond its scene and size.

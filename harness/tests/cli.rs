@@ -505,6 +505,10 @@ fn usage_options(block: &str, command: &str) -> std::collections::BTreeSet<Strin
         }
         if inside {
             options.extend(long_options(line));
+            // `-o` is `--output`'s short form in the usage lines.
+            if line.contains("[-o ") {
+                options.insert("--output".into());
+            }
         }
     }
     options
@@ -537,18 +541,14 @@ fn usage_lines_match_the_help() {
                 .unwrap(),
         ),
     ];
-    for command in ["render", "compare", "plot"] {
+    for command in ["render", "compare", "plot", "show", "animate"] {
         let help = help_options(command);
         assert!(
             help.contains("--output") || help.contains("--preset"),
             "{help:?}"
         );
         for (file, block) in blocks {
-            let mut shown = usage_options(block, command);
-            // `-o` is `--output`'s short form in the usage lines.
-            if block.contains(&format!("shadeline {command}")) && block.contains("-o ") {
-                shown.insert("--output".into());
-            }
+            let shown = usage_options(block, command);
             assert_eq!(shown, help, "{file}: the usage of `shadeline {command}`");
         }
     }
