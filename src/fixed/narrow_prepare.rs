@@ -217,31 +217,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         scene: &Scene<S, L>,
         corners: bool,
     ) -> Result<(), (Item, &'static str)> {
-        // Sphere lights (a point light of radius above 0) need the full-width kernel.
-        if let Some(light) = self
-            .lights
-            .iter()
-            .position(|l| !matches!(l, FixedLight::Distant { .. } | FixedLight::Point { .. }))
-        {
-            return Err((Item::Light(light), "radius"));
-        }
-        // Oren–Nayar and GGX need the full-width kernel (without it, `prepare_fields` has
-        // refused them already).
-        #[cfg(feature = "full-width")]
-        if let Some(sphere) = scene
-            .spheres()
-            .iter()
-            .position(|s| matches!(s.material.model, Model::OrenNayar { .. } | Model::Ggx(_)))
-        {
-            return Err((Item::Sphere(sphere), "model"));
-        }
-        // The narrow run indexes its tracks by `u8`.
-        if self.spheres.len() > 256 {
-            return Err((Item::Sphere(256), "center"));
-        }
-        if !corners {
-            return Err((Item::Camera, "vfov"));
-        }
+        self.narrow_refusal(scene, corners)?;
         // D = forward + dy·step_y + dx·step_x at 2²⁹ for the unit forward vector: each
         // component of `forward` at most 2²⁹ and of a step below 2²⁸ (`corners`).
         let view = NarrowView {
@@ -249,32 +225,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             step_x: to_q29(self.step_x),
             step_y: to_q29(self.step_y),
         };
-        // Each distant light's brightest channel, the largest level converted (the
-        // conversion is monotonic, so it is the largest of the converted levels).
-        let intensity: f32 = self
-            .lights
-            .iter()
-            .map(|l| match l {
-                FixedLight::Distant { arriving, .. } => {
-                    let brightest = arriving.iter().map(|c| c.to_bits()).max().unwrap_or(0);
-                    to_f32(brightest as i64, 16)
-                }
-                _ => 0.0,
-            })
-            .sum();
+        let intensity = self.distant_intensity();
         self.prepare_points();
         // The Gram matrix of the quadrics' three directions, in the order of `PAIRS`: the
         // same for every sphere.
         let dirs = view.dirs();
         let gram = PAIRS.map(|(a, b)| dot_ii(dirs[a % 3], dirs[b % 3]));
-        let eps = self.epsilon.to_bits() as i64;
-        let lift = self.spheres.iter().map(|s| s.radius.to_bits() as i64 + eps);
-        self.quick_shift = 64u32.saturating_sub(lift.max().unwrap_or(0).leading_zeros() + 16);
-        for (across, light) in self.across.iter_mut().zip(&self.lights) {
-            if let FixedLight::Distant { to_light, .. } = light {
-                *across = across_light(to_light.map(|c| c.to_bits()));
-            }
-        }
+        self.prepare_across();
         self.narrow_lights.clear();
         for i in 0..self.spheres.len() {
             let m = scene.spheres().get(i).map(|s| s.material);
@@ -304,6 +261,75 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .any(|s| s.narrow.is_some_and(|n| n.terms));
         self.narrow = Some(view);
         Ok(())
+    }
+
+    /// The first item and field that keep the frame from the narrow kernel before its
+    /// spheres are looked at: a sphere light, an Oren–Nayar or GGX sphere, more spheres than
+    /// a run's tracks index, or a view too wide (`corners`, see [`Self::prepare_narrow`]).
+    #[inline(always)]
+    fn narrow_refusal(
+        &self,
+        #[cfg_attr(not(feature = "full-width"), allow(unused_variables))] scene: &Scene<S, L>,
+        corners: bool,
+    ) -> Result<(), (Item, &'static str)> {
+        // Sphere lights (a point light of radius above 0) need the full-width kernel.
+        if let Some(light) = self
+            .lights
+            .iter()
+            .position(|l| !matches!(l, FixedLight::Distant { .. } | FixedLight::Point { .. }))
+        {
+            return Err((Item::Light(light), "radius"));
+        }
+        // Oren–Nayar and GGX need the full-width kernel (without it, `prepare_fields` has
+        // refused them already).
+        #[cfg(feature = "full-width")]
+        if let Some(sphere) = scene
+            .spheres()
+            .iter()
+            .position(|s| matches!(s.material.model, Model::OrenNayar { .. } | Model::Ggx(_)))
+        {
+            return Err((Item::Sphere(sphere), "model"));
+        }
+        // The narrow run indexes its tracks by `u8`.
+        if self.spheres.len() > 256 {
+            return Err((Item::Sphere(256), "center"));
+        }
+        if !corners {
+            return Err((Item::Camera, "vfov"));
+        }
+        Ok(())
+    }
+
+    /// The sum over the distant lights of each one's brightest channel (levels), which
+    /// bounds the lobes with the point lights' (`lobe_cutoff`).
+    #[inline(always)]
+    fn distant_intensity(&self) -> f32 {
+        // Each distant light's brightest channel, the largest level converted (the
+        // conversion is monotonic, so it is the largest of the converted levels).
+        self.lights
+            .iter()
+            .map(|l| match l {
+                FixedLight::Distant { arriving, .. } => {
+                    let brightest = arriving.iter().map(|c| c.to_bits()).max().unwrap_or(0);
+                    to_f32(brightest as i64, 16)
+                }
+                _ => 0.0,
+            })
+            .sum()
+    }
+
+    /// The quick caster test's shift ([`Self::quick_shift`]) and each distant light's
+    /// basis across it ([`Self::across`]).
+    #[inline(always)]
+    fn prepare_across(&mut self) {
+        let eps = self.epsilon.to_bits() as i64;
+        let lift = self.spheres.iter().map(|s| s.radius.to_bits() as i64 + eps);
+        self.quick_shift = 64u32.saturating_sub(lift.max().unwrap_or(0).leading_zeros() + 16);
+        for (across, light) in self.across.iter_mut().zip(&self.lights) {
+            if let FixedLight::Distant { to_light, .. } = light {
+                *across = across_light(to_light.map(|c| c.to_bits()));
+            }
+        }
     }
 
     /// Sphere `i`'s narrow constants, from the frame's narrow view and its shininess `n`
