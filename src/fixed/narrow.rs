@@ -184,6 +184,51 @@ pub(crate) enum PointSeen {
 /// on everywhere, and hold it to the exact ray's decisions.
 pub(crate) const DISTANCE_TEST: bool = cfg!(any(shadeline_short_mul, test));
 
+/// Whether `narrow_lights`' loop of unknown length (`N = 0`) holds a distant light's
+/// `diffuse` and `specular` stages written out ([`distant_light!`]) rather than as the
+/// inlined [`PreparedFixed::distant_light`]: on RV32, where the pixel loop then spills fewer
+/// registers (the floor 1.0% fewer instructions, three-lights 0.4%); not in the one-light
+/// loop, where it made RV32's exponent series 1.1% dearer, and not on the other targets,
+/// where it made the M0's floor and exponent series and the M4F's lamp dearer
+/// (`docs/performance.md`, "Choices measured"). The crate's own tests take the stages
+/// written out, so that both forms are tested (the other by the firmware's CRCs).
+const DISTANT_LIGHT_WRITTEN_OUT: bool = cfg!(any(target_arch = "riscv32", test));
+
+/// The `diffuse` and `specular` stages of an unshadowed distant light, as
+/// [`PreparedFixed::distant_light`] takes them (its arguments by the same names), into the
+/// [`Sums`] `sums`: one body for the function and for the loop that holds them written out
+/// ([`DISTANT_LIGHT_WRITTEN_OUT`]).
+macro_rules! distant_light {
+    ($frame:expr, $surface:ident, ($sphere:ident, $ns:ident), $light_index:ident,
+     ($nl:ident, $ld:ident), ($d:ident, $g:ident, $dl:ident), $sums:ident) => {
+        let arriving = match $frame.lights.get($light_index) {
+            Some(FixedLight::Distant { arriving, .. }) => arriving.map(|c| c.to_bits()),
+            _ => [0; 3],
+        };
+        if $nl > 0 {
+            $sums.diffuse = each3(|c| $sums.diffuse[c].saturating_add(scale_q15(arriving[c], $nl)));
+            $sums.lit = true;
+        }
+        let (h, trusted) = fast_h($sphere.blinn(), $nl, $surface.nv, $ld);
+        if h < $ns.cutoff {
+            let lobe = match fast_lobe($ns, $sphere.shininess, h, trusted) {
+                Some(lobe) => lobe,
+                None => precise_lobe(
+                    $sphere.blinn(),
+                    $sphere.shininess,
+                    $ns,
+                    $surface.e,
+                    $d,
+                    ($g.v, $dl.v),
+                ),
+            };
+            $sums.specular =
+                each3(|c| $sums.specular[c].saturating_add(scale_q16(arriving[c], lobe)));
+            $sums.glossy = true;
+        }
+    };
+}
+
 /// What the shadow filters found for a point light at a pixel.
 pub(crate) enum Casters {
     /// A caster blocks the ray.
@@ -566,14 +611,26 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 sums.shadow(light_index, record_hits);
                 continue;
             }
-            self.distant_light(
-                surface,
-                (sphere, ns),
-                light_index,
-                (nl, ld),
-                (d, g, dl),
-                &mut sums,
-            );
+            if DISTANT_LIGHT_WRITTEN_OUT && N == 0 {
+                distant_light!(
+                    self,
+                    surface,
+                    (sphere, ns),
+                    light_index,
+                    (nl, ld),
+                    (d, g, dl),
+                    sums
+                );
+            } else {
+                self.distant_light(
+                    surface,
+                    (sphere, ns),
+                    light_index,
+                    (nl, ld),
+                    (d, g, dl),
+                    &mut sums,
+                );
+            }
         }
         Narrow::Done(Some(sums.combine(sphere, index)))
     }
@@ -636,31 +693,15 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         (d, g, dl): (V3<i32>, &Step, &Step),
         sums: &mut Sums,
     ) {
-        let arriving = match self.lights.get(light_index) {
-            Some(FixedLight::Distant { arriving, .. }) => arriving.map(|c| c.to_bits()),
-            _ => [0; 3],
-        };
-        if nl > 0 {
-            sums.diffuse = each3(|c| sums.diffuse[c].saturating_add(scale_q15(arriving[c], nl)));
-            sums.lit = true;
-        }
-        let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);
-        if h >= ns.cutoff {
-            return;
-        }
-        let lobe = match fast_lobe(ns, sphere.shininess, h, trusted) {
-            Some(lobe) => lobe,
-            None => precise_lobe(
-                sphere.blinn(),
-                sphere.shininess,
-                ns,
-                surface.e,
-                d,
-                (g.v, dl.v),
-            ),
-        };
-        sums.specular = each3(|c| sums.specular[c].saturating_add(scale_q16(arriving[c], lobe)));
-        sums.glossy = true;
+        distant_light!(
+            self,
+            surface,
+            (sphere, ns),
+            light_index,
+            (nl, ld),
+            (d, g, dl),
+            sums
+        );
     }
 
     /// `t` of a hit in raw I16F16 on the narrow direction `d`, for choosing the nearer of
