@@ -75,7 +75,7 @@ LAYERS = [
     {'brdf'},
     {'render', 'runs'},
     {'float', 'fixed'},
-    {'eg'},
+    {'eg', 'damage'},
     {'presets', 'reference'},
 ]
 layer_of = {m: i for i, layer in enumerate(LAYERS) for m in layer}

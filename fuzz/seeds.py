@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the seed corpus of the `scene` and `paths_agree` fuzz targets.
+"""Writes the seed corpus of the `scene`, `paths_agree` and `damage` fuzz targets.
 
 Each seed, `corpus/<target>/seed-<name>`, is a `SceneInput` (fuzz/src/lib.rs) encoded the way
 `arbitrary` 1.x decodes it (the `seed-` prefix keeps it clear of the hex names libFuzzer gives
@@ -210,6 +210,22 @@ SEEDS = {
 }
 
 
+def change(kind, index, amount):
+    """A `damage` input's `ChangeIn`: its kind, index and three signed amounts (bytes)."""
+    return bytes([kind, index]) + struct.pack("<3b", *amount)
+
+
+# The `damage` target's seeds: a change, then a scene of `SEEDS`.
+DAMAGE_SEEDS = {
+    "moved-sphere-exponent-series": (change(0, 2, (8, -6, 4)), "exponent-series"),
+    "turned-light-point-and-distant": (change(1, 0, (12, 0, 0)), "point-and-distant-blinn"),
+    "moved-point-light": (change(1, 1, (-20, 10, 6)), "point-and-distant-blinn"),
+    "recoloured-sphere-every-model": (change(2, 1, (100, -40, 7)), "every-model"),
+    "moved-camera-tangent-row": (change(3, 0, (5, 5, -5)), "tangent-row"),
+    "moved-and-recoloured-metals": (change(4, 0, (-16, 3, 9)), "metals"),
+}
+
+
 def main():
     root = os.path.dirname(os.path.abspath(__file__))
     for target in ("scene", "paths_agree"):
@@ -218,6 +234,11 @@ def main():
         for name, data in SEEDS.items():
             with open(os.path.join(directory, "seed-" + name), "wb") as f:
                 f.write(data)
+    directory = os.path.join(root, "corpus", "damage")
+    os.makedirs(directory, exist_ok=True)
+    for name, (head, scene_name) in DAMAGE_SEEDS.items():
+        with open(os.path.join(directory, "seed-" + name), "wb") as f:
+            f.write(head + SEEDS[scene_name])
 
 
 if __name__ == "__main__":

@@ -114,7 +114,8 @@
 //!    helpers (covered runs, the background fill);
 //! 5. the two paths, each `prepare` → `spans` → `row` → `kernel`: [`float`] (scalar and
 //!    SIMD, one kernel over a lane type) and [`fixed`] (integers only);
-//! 6. sinks built on [`Render`]: `eg` (feature `embedded-graphics`);
+//! 6. sinks built on [`Render`]: `eg` (feature `embedded-graphics`) and [`damage`] (the
+//!    pixels that can differ between two frames, and rendering only those);
 //! 7. built on everything: [`presets`] and the independent [`reference`](mod@reference).
 
 #![no_std]
@@ -122,6 +123,7 @@
 #![deny(missing_docs)]
 
 pub mod brdf;
+pub mod damage;
 #[cfg(feature = "embedded-graphics")]
 pub mod eg;
 pub mod encoding;

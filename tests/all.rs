@@ -10,6 +10,7 @@ mod antialias;
 mod bad_input;
 mod brdf_laws;
 mod capacities;
+mod damage;
 mod eg_drawable;
 mod encodings;
 mod firmware_crcs;

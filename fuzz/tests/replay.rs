@@ -8,7 +8,7 @@
 //! there and counted here, and a target whose inputs all fail to decode fails the test.
 
 use arbitrary::{Arbitrary, Unstructured};
-use shadeline_fuzz::targets::{paths_agree, scene, scene_file};
+use shadeline_fuzz::targets::{damage, paths_agree, scene, scene_file};
 use shadeline_fuzz::SceneInput;
 use std::fs;
 use std::path::PathBuf;
@@ -56,6 +56,21 @@ fn scene_corpus_passes() {
 fn paths_agree_corpus_passes() {
     let n = replay_structured("paths_agree", paths_agree::check);
     eprintln!("paths_agree: {n} inputs replayed");
+}
+
+#[test]
+fn damage_corpus_passes() {
+    let mut decoded = 0;
+    for (name, bytes) in corpus("damage") {
+        let Ok(input) = damage::DamageInput::arbitrary_take_rest(Unstructured::new(&bytes)) else {
+            continue;
+        };
+        decoded += 1;
+        let run = std::panic::catch_unwind(|| damage::check(&input));
+        assert!(run.is_ok(), "damage: corpus input {name} fails its check");
+    }
+    assert!(decoded > 0, "damage: no corpus input decodes");
+    eprintln!("damage: {decoded} inputs replayed");
 }
 
 #[test]

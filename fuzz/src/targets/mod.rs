@@ -3,6 +3,7 @@
 //! input to them, so the same checks run in the test command on the committed corpus
 //! (`tests/replay.rs`) and in the long campaigns of `.ci/fuzz`.
 
+pub mod damage;
 pub mod paths_agree;
 pub mod scene;
 pub mod scene_file;
