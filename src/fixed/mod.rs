@@ -162,6 +162,7 @@ mod narrow_point_prepare;
 mod narrow_point_shadow;
 #[cfg(feature = "narrow-precise")]
 mod narrow_precise;
+mod narrow_caster_prepare;
 mod narrow_prepare;
 mod narrow_roots;
 mod narrow_run;

@@ -6,8 +6,9 @@
 //! its scaled integers.
 
 use super::convert::to_f32;
+use super::narrow_caster_prepare::point_casters;
 use super::exact::{arriving, Exact};
-use super::mul::{dot_ii, mul_128, mul_ii, mul_iu, mul_uu};
+use super::mul::{dot_ii, mul_128, mul_ii};
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::prepare::{
@@ -16,7 +17,7 @@ use super::prepare::{
 use super::quadric::Quadric;
 use super::roots::{inv_sqrt, sqrt};
 use super::vector::{each3, Unit, V3};
-use crate::scene::{Item, Light, Model, Scene};
+use crate::scene::{Item, Model, Scene};
 use fixed::types::I16F48;
 
 /// The largest error of the narrow kernel's fast `h = 1 − cos` (Phong's `1 − R·V`,
@@ -318,20 +319,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             .sum()
     }
 
-    /// The quick caster test's shift ([`Self::quick_shift`]) and each distant light's
-    /// basis across it ([`Self::across`]).
-    #[inline(always)]
-    fn prepare_across(&mut self) {
-        let eps = self.epsilon.to_bits() as i64;
-        let lift = self.spheres.iter().map(|s| s.radius.to_bits() as i64 + eps);
-        self.quick_shift = 64u32.saturating_sub(lift.max().unwrap_or(0).leading_zeros() + 16);
-        for (across, light) in self.across.iter_mut().zip(&self.lights) {
-            if let FixedLight::Distant { to_light, .. } = light {
-                *across = across_light(to_light.map(|c| c.to_bits()));
-            }
-        }
-    }
-
     /// Sphere `i`'s narrow constants, from the frame's narrow view and its shininess `n`
     /// and the sum of the lights' brightest channels: `false` if the sphere does not meet
     /// the narrow kernel's conditions or a number does not fit. Out of line (and the
@@ -467,85 +454,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
     }
 
-    /// A raw point `p`'s offset from the eye across light `light`, `(p − eye)·u` and
-    /// `(p − eye)·v` with `u`, `v` the light's [`PreparedFixed::across`], in the quick caster
-    /// test's units, rounded to the nearest and held within `2³⁰` (a sphere's centre is well
-    /// inside).
-    fn across_from_eye(&self, p: V3<i32>, light: usize) -> [i32; 2] {
-        let shift = 15 + self.quick_shift;
-        let limit = 1i64 << 30;
-        let eye = self.eye.map(|c| c.to_bits());
-        self.across.get(light).map_or([0; 2], |uv| {
-            // The offset times u in raw units times 2¹⁵, to the quick test's units.
-            uv.map(|u| {
-                let u = u.map(i32::from);
-                let at = (dot_ii(p, u) - dot_ii(eye, u) + (1 << (shift - 1))) >> shift;
-                at.clamp(-limit, limit) as i32
-            })
-        })
-    }
-
-    /// [`NarrowSphere::quick_margin`] of sphere `i`, in the quick test's units (`2^s` raw,
-    /// `s` the frame's `quick_shift`): with `Ω` the largest `|O − C_k|` over its lifted
-    /// points `O` and the casters `k` (at most the largest distance of centres plus
-    /// `r + ε`), `17 + Ω·2⁻¹¹ + 2√(2Ω + 1)`, each in units. The quick test's own rounding
-    /// is below 10 units; `u` and `v` are within `2⁻¹⁴` of an exact basis across the
-    /// light, which moves a distance by `Ω·2⁻¹⁴`; and the exact test's `b`, rounded down to
-    /// a raw unit, and `|L|`'s distance from 1 let it block a ray up to
-    /// `√(2Ω + 1) + Ω·2⁻¹⁴` raw beyond the caster's radius. Each term is doubled or more.
-    /// `−1` where the test is off or the radius too large for its units.
-    fn quick_margin(&self, i: usize) -> i32 {
-        let Some(own) = self.spheres.get(i) else {
-            return -1;
-        };
-        let lift = own.radius.to_bits() as i64 + self.epsilon.to_bits() as i64;
-        let shift = self.quick_shift;
-        if !QUICK_CASTER_TEST || lift >> shift >= 1 << 16 {
-            return -1;
-        }
-        // Only a receiver four times the radius of each of its casters (a floor under the
-        // spheres resting on it) takes the test: most of its pixels lie far from every
-        // caster's cylinder, where the test saves the exact one; on spheres of like sizes
-        // it costs more than it saves.
-        let casters = self
-            .narrow_lights
-            .get(i)
-            .map_or(0, |l| l.iter().fold(0, |m, l| m | l.casters));
-        let mut far = 0u64;
-        for (k, s) in self.spheres.iter().enumerate() {
-            if k < 32 && casters & (1 << k) != 0 && s.radius.to_bits() > own.radius.to_bits() / 4 {
-                return -1;
-            }
-            let d = each3(|j| own.center[j].to_bits().wrapping_sub(s.center[j].to_bits()));
-            far = far.max(d.iter().map(|&v| mul_ii(v, v) as u64).sum::<u64>());
-        }
-        // Centres within 2³⁰ raw of each other: Ω below 2³¹.
-        let omega = sqrt(far) + 1 + lift as u64;
-        let root = sqrt(2 * omega + 1) + 1;
-        (16 + ((omega >> shift) >> 11) + ((2 * root) >> shift) + 1).min(i32::MAX as u64) as i32
-    }
-
-    /// The spheres whose surface comes within `4ε` of sphere `i`'s (bit `k` for sphere `k`,
-    /// the first 32), from the exact squared distance of the centres.
-    fn touching(&self, i: usize) -> u32 {
-        let Some(own) = self.spheres.get(i) else {
-            return 0;
-        };
-        let eps = self.epsilon.to_bits() as i64;
-        let mut mask = 0;
-        for (k, s) in self.spheres.iter().enumerate().take(32) {
-            let d = each3(|j| own.center[j].to_bits().wrapping_sub(s.center[j].to_bits()));
-            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
-            // Radii below 2²⁹ raw and ε far below: the sum fits an `i32`.
-            let apart = (own.radius.to_bits() as i64 + s.radius.to_bits() as i64 + 4 * eps)
-                .min(i32::MAX as i64) as i32;
-            if k != i && len2 <= mul_ii(apart, apart) {
-                mask |= 1 << k;
-            }
-        }
-        mask
-    }
-
     /// Sphere `i`'s narrow constants for light `light`, from the frame's narrow view, the
     /// Gram matrix of its three directions and their dot products `b` with the sphere's eye
     /// offset (see [`quadric`]); the field that keeps the sphere from the narrow kernel if
@@ -651,124 +559,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         sum
     }
 
-    /// The casters of sphere `i` for the distant light `to_light` and their filter, as
-    /// [`NarrowLight`] holds them: `(casters, ahead, reach)`. One pass over the other
-    /// spheres, on the frame's scaled integers.
-    ///
-    /// A shadow ray from the sphere's surface, lifted by `ε`, starts within `r + ε` of the
-    /// half-line from its centre toward the light, so only a sphere whose centre comes within
-    /// `r + r_k + ε` of that half-line can block it. The mask takes the spheres within
-    /// `r + r_k + 5ε` and `2⁻⁹` of the radii (looser than the rule of
-    /// [`Scene::shadow_casters`]), so it is never short of a caster. `ahead` and `reach` are
-    /// the loosest over the casters, each rounded toward passing more pixels, then widened by
-    /// the fast `N·L`'s error (`2⁻¹²`, and `2⁻¹¹` for its square); with no caster nothing
-    /// passes.
-    ///
-    /// Integers only, from exact 32×32→64 products: the scene lies within `2¹³` units, so
-    /// every centre and radius is below `2²⁹` raw and every difference below `2³⁰`. The
-    /// distance of a caster's centre from the half-line is `|Δ × L|` (no cancellation, unlike
-    /// `|Δ|² − (Δ·L)²`), each component taken to raw units (rounded down, within one unit)
-    /// and the root ([`sqrt`], within `2⁻²⁹`) lowered by four units and that relative error,
-    /// which also covers `|L|`'s distance from 1 (`2⁻²⁹`).
-    ///
-    /// A caster touching the sphere (a sphere resting on a floor sphere) is in the mask like
-    /// any other; where the lifted point lies within `ε` of it and ahead of its centre along
-    /// the light, the filter passes the pixel as unblocked, which the full-width kernel's
-    /// ray, starting inside the caster, may not: a sliver of width `ε` at the contact.
-    ///
-    /// `None` if the frame has spheres beyond the mask's 32 bits. Out of line: once per
-    /// sphere and light.
-    #[inline(never)]
-    fn narrow_casters(&self, i: usize, to_light: V3<Unit>) -> Option<(u32, i32, u32)> {
-        let own = self.spheres.get(i)?;
-        let eps = self.epsilon.to_bits() as i64;
-        let radius = |s: &FixedSphere| s.radius.to_bits() as i64;
-        let r = radius(own);
-        let l = to_light.map(|c| c.to_bits());
-        // r + ε is at least one unit (2¹⁶ raw) and below 2³¹: the `max`es only show the
-        // compiler that no divisor below is 0.
-        let lift = ((r + eps) as u64).max(1);
-        let (mut mask, mut ahead, mut reach) = (0u32, i64::MIN, i64::MIN);
-        for (k, c) in self.spheres.iter().enumerate() {
-            if k == i {
-                continue;
-            }
-            if k >= 32 {
-                return None;
-            }
-            let rk = radius(c);
-            let d = each3(|j| own.center[j].to_bits().wrapping_sub(c.center[j].to_bits()));
-            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
-            // Δ·L in raw units times 2³⁰, exact.
-            let along = mul_ii(d[0], l[0]) + mul_ii(d[1], l[1]) + mul_ii(d[2], l[2]);
-            // |Δ × L| in raw units, rounded down per component: below 2³¹ each.
-            let cross =
-                |a: usize, b: usize| ((mul_ii(d[a], l[b]) - mul_ii(d[b], l[a])) >> 30) as i32;
-            let cross = [cross(1, 2), cross(2, 0), cross(0, 1)];
-            let cross2 = cross.iter().map(|&v| mul_ii(v, v) as u64).sum::<u64>();
-            let root = sqrt(cross2);
-            let across = (root - (root >> 28)) as i64 - 4;
-            let radii = r + rk;
-            let near = radii + (radii >> 9) + 5 * eps;
-            // The half-line's closest point to the caster's centre: its start where the
-            // caster lies behind the sphere along the light (`Δ·L ≥ 0`).
-            let far = if along < 0 {
-                across >= near
-            } else {
-                len2 >= mul_ii(near as i32, near as i32)
-            };
-            if far {
-                continue;
-            }
-            mask |= 1 << k;
-            // −(Δ·L)/(r + ε) in Q15, rounded up (by a whole step where it is positive).
-            let q = (along.unsigned_abs() / (lift << 15).max(1)) as i64;
-            ahead = ahead.max(if along < 0 { q + 1 } else { -q });
-            // 1 − (gap/(r + ε))² in Q30, the ratio rounded down to 30 bits (gap < 2³¹).
-            let gap = across - rk;
-            let g30 = if gap <= 0 {
-                0
-            } else {
-                ((gap as u64) << 30) / lift
-            };
-            let g30 = g30.min(u32::MAX as u64) as u32;
-            reach = reach.max((1 << 30) - (mul_uu(g30, g30) >> 30) as i64);
-        }
-        if mask == 0 {
-            return Some((0, i32::MIN, 0));
-        }
-        let q15 = (ahead + 8).clamp(-2 << 15, 2 << 15);
-        let q30 = (reach + (1 << 19)).clamp(0, 2 << 30);
-        Some((mask, q15 as i32, q30 as u32))
-    }
 }
-
-/// The casters of sphere `i` for the point light `light` (as [`NarrowLight`] holds them):
-/// [`Scene::shadow_casters`]' mask, the same spheres the full-width kernel tests, and a
-/// filter that passes every pixel (`N·L` alone does not bound a ray toward a point). `None`
-/// if the frame has spheres beyond the mask's 32 bits.
-fn point_casters<const S: usize, const L: usize>(
-    scene: &Scene<S, L>,
-    i: usize,
-    light: &Light,
-) -> Option<(u32, i32, u32)> {
-    if scene.spheres().len() > 32 {
-        return None;
-    }
-    Some(match scene.shadow_casters(i, light) {
-        0 => (0, i32::MIN, 0),
-        mask => (mask, i32::MAX, u32::MAX),
-    })
-}
-
-/// Whether the narrow kernel takes the quick caster test (`narrow_blocked`): on ARMv6-M,
-/// where each 32×32→64-bit product of the exact test is a call, it saves most of a floor's
-/// caster tests, and on RV32, whose 64-bit product is two instructions, some; with the
-/// Cortex-M4's one-instruction product the exact test is about as cheap, and the quick one
-/// costs the loop more than it saves (`docs/performance.md`, "Choices measured"). The
-/// crate's own tests turn it on everywhere, to hold it to changing no pixel.
-pub(crate) const QUICK_CASTER_TEST: bool =
-    cfg!(any(shadeline_short_mul, target_arch = "riscv32", test));
 
 /// The quadrics' scales of a sphere of radius `r` (raw, `r2 = r²`) whose centre is `|oc|²`
 /// (raw²) from the eye: `E′`'s shift to Q29 and `G`'s, from `⌈log₂ max(1, |ô|²)⌉` (below
@@ -807,35 +598,6 @@ fn hit_constants(oc_len2: i64, r2: i64, r: i64) -> (u32, u8, Exact) {
         c_shift,
         Exact::from_f32((oc_len2 - r2) as f32 / r as f32),
     )
-}
-
-/// Two unit vectors across the unit vector `l` (Q30), in Q15: `u = (l × e)/|l × e|` for the
-/// axis `e` least along `l` (so `|l × e|² ≥ 2/3`), and `v = l × u`. Each is within `2⁻¹⁵`
-/// of the exact basis across `l/|l|` in length (rounding down to Q15, `inv_sqrt`'s error,
-/// and `|l|` within `2⁻²⁹` of 1).
-fn across_light(l: [i32; 3]) -> [[i16; 3]; 2] {
-    let [x, y, z] = l;
-    let m = l.map(|c| c.unsigned_abs());
-    // Components of a unit vector in Q30: negating one cannot overflow.
-    let w = if m[0] <= m[1] && m[0] <= m[2] {
-        [0, z, -y]
-    } else if m[1] <= m[2] {
-        [-z, 0, x]
-    } else {
-        [y, -x, 0]
-    };
-    let len2 = w.iter().map(|&c| mul_ii(c, c) as u64).sum::<u64>();
-    let unit = |c: i64| c.clamp(-(1 << 15) + 1, (1 << 15) - 1) as i32;
-    // w·(1/|w|) in Q15: `inv_sqrt`'s `v·y >> (shift − 15)`, `shift` at least 31.
-    let (inv, shift) = inv_sqrt(len2).unwrap_or((0, 31));
-    let [u0, u1, u2] = w.map(|c| unit(mul_iu(c, inv) >> (shift - 15)));
-    let cross = |a: i32, b: i32, c: i32, d: i32| unit((mul_ii(a, b) - mul_ii(c, d)) >> 30);
-    let v = [
-        cross(y, u2, z, u1),
-        cross(z, u0, x, u2),
-        cross(x, u1, y, u0),
-    ];
-    [[u0, u1, u2].map(|c| c as i16), v.map(|c| c as i16)]
 }
 
 #[cfg(test)]
@@ -978,123 +740,5 @@ mod tests {
             checked += 1;
         }
         assert!(checked > 1000, "{checked} cases");
-    }
-
-    /// `narrow_casters` against the same geometry in `f64`, from the prepared integers, over
-    /// random pairs of spheres under a random distant light: the mask never leaves out a
-    /// sphere within the rule of `Scene::shadow_casters` (nor takes one well outside its own),
-    /// and `ahead` and `reach` are never tighter than the exact values widened by the fast
-    /// `N·L`'s error, nor looser than that by more than their rounding.
-    #[test]
-    fn caster_filter_is_the_exact_filter_rounded_outward() {
-        use crate::scene::{Camera, Light, Material, Sphere};
-        use crate::LinearRgb;
-        let mut state = 0x853c_49e6_748f_ea9bu64;
-        let mut next = |lo: f64, hi: f64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            (lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)) as f32
-        };
-        let (mut masked, mut left_out) = (0, 0);
-        for round in 0..4000 {
-            let camera = Camera {
-                position: Vec3::new(0.0, 0.0, 40.0),
-                look_at: Vec3::new(0.0, 0.0, 0.0),
-                up: Vec3::new(0.0, 1.0, 0.0),
-                vfov_degrees: 30.0,
-            };
-            let mut scene: Scene<2, 1> = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
-            let direction = Vec3::new(next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0));
-            let mut spheres = [0; 2].map(|_| Sphere {
-                center: Vec3::new(next(-3.0, 3.0), next(-3.0, 3.0), next(-3.0, 3.0)),
-                radius: next(0.2, 1.5),
-                material: Material::default(),
-            });
-            if round % 2 == 1 {
-                // The second sphere ahead of the first along the light, its centre about the
-                // radii from the half-line: where the mask's margins decide (ε is 0.004 here).
-                let Some(u) = (-direction).normalized() else {
-                    continue;
-                };
-                let Some(p) = u.cross(Vec3::new(next(-1.0, 1.0), 1.0, 0.5)).normalized() else {
-                    continue;
-                };
-                let radii = spheres[0].radius + spheres[1].radius;
-                let offset = u.scale(next(1.0, 3.0)) + p.scale(radii + next(0.0, 0.04));
-                spheres[1].center = spheres[0].center + offset;
-            }
-            if spheres.iter().any(|s| scene.add_sphere(*s).is_err()) {
-                continue;
-            }
-            let light = Light::Distant {
-                direction,
-                color: LinearRgb::new(1.0, 1.0, 1.0),
-                intensity: 1.0,
-            };
-            if scene.add_light(light).is_err() {
-                continue;
-            }
-            let Ok(frame) = PreparedFixed::new(&scene, 64, 48) else {
-                continue;
-            };
-            if frame.narrow.is_none() {
-                continue;
-            }
-            let Some(FixedLight::Distant { to_light, .. }) = frame.lights.first() else {
-                panic!("a distant light");
-            };
-            let l = to_light.map(|c| c.to_bits() as f64);
-            let norm = (l[0] * l[0] + l[1] * l[1] + l[2] * l[2]).sqrt();
-            let l = l.map(|c| c / norm);
-            let eps = frame.epsilon.to_bits() as f64;
-            for (i, k) in [(0, 1), (1, 0)] {
-                let (own, other) = (&frame.spheres[i], &frame.spheres[k]);
-                let d = each3(|j| (own.center[j].to_bits() - other.center[j].to_bits()) as f64);
-                let (r, rk) = (own.radius.to_bits() as f64, other.radius.to_bits() as f64);
-                let along = d[0] * l[0] + d[1] * l[1] + d[2] * l[2];
-                let len = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
-                let across = (len * len - along * along).max(0.0).sqrt();
-                let dist = if along < 0.0 { across } else { len };
-                let filter = frame.narrow_lights[i][0];
-                let bit = filter.casters & (1 << k) != 0;
-                let radii = r + rk;
-                if dist < radii + 5.0 * eps + 1.0e-3 * radii {
-                    assert!(bit, "sphere {k} left out of {i}'s casters at {dist} raw");
-                }
-                if dist > radii * (1.0 + 1.0 / 512.0) + 5.0 * eps + 16.0 {
-                    assert!(!bit, "sphere {k} among {i}'s casters at {dist} raw");
-                    left_out += 1;
-                }
-                if !bit {
-                    continue;
-                }
-                masked += 1;
-                let lift = r + eps;
-                let ahead = ((-along / lift + 1.0 / 4096.0) * 32768.0).clamp(-65536.0, 65536.0);
-                let got = filter.ahead as f64;
-                assert!(
-                    got >= ahead - 1e-3 && got <= ahead + 2.01,
-                    "ahead {got} for {ahead}"
-                );
-                let gap = across - rk;
-                let reach = if gap <= 0.0 {
-                    1.0
-                } else {
-                    1.0 - (gap / lift).powi(2)
-                };
-                let reach = ((reach + 1.0 / 2048.0) * (1u64 << 30) as f64)
-                    .clamp(0.0, 2.0 * (1u64 << 30) as f64);
-                let got = filter.reach as f64;
-                assert!(
-                    got >= reach - 1.0 && got <= reach + (1 << 18) as f64,
-                    "reach {got} for {reach}"
-                );
-            }
-        }
-        assert!(
-            masked > 1000 && left_out > 3000,
-            "{masked} masked, {left_out} left out"
-        );
     }
 }

@@ -6,7 +6,7 @@
 
 use super::mul::{dot_ii, mul_ii};
 use super::narrow::NORMAL_LIMIT;
-use super::narrow_prepare::QUICK_CASTER_TEST;
+use super::narrow_caster_prepare::QUICK_CASTER_TEST;
 use super::prepare::{FixedLight, FixedSphere, NarrowSphere, PreparedFixed};
 use super::vector::{each3, V3};
 
