@@ -100,7 +100,8 @@ pub(super) fn shadow_ball(
         s0 = s0.max(nearest * libm::cosf(alpha) - 2.0 * eps);
         s1 = s1.min(far + 2.0 * eps);
     }
-    if !(s0 <= s1) {
+    // An empty interval, or a NaN bound: no shadow.
+    if s0.partial_cmp(&s1).is_none_or(core::cmp::Ordering::is_gt) {
         return None;
     }
     let reach = offset(s0).max(offset(s1));
@@ -180,7 +181,8 @@ fn distant(caster: Vec3, rho: f32, receiver: Vec3, big: f32, v: Vec3) -> Option<
     };
     // Beyond the caster's near side (the caster between the point and the light).
     s0 = s0.max(-rho);
-    if !(s0 <= s1) {
+    // An empty interval, or a NaN bound: no shadow.
+    if s0.partial_cmp(&s1).is_none_or(core::cmp::Ordering::is_gt) {
         return None;
     }
     Some(chain(caster, v, s0, s1, rho, receiver, big))
