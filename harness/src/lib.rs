@@ -9,12 +9,14 @@
 //! - [`progress`]: a progress bar for work that takes more than a second;
 //! - [`fb_pixels`]: writing a frame into a Linux framebuffer's memory, any stride and format;
 //!   [`fb_device`] (Linux): the device itself;
-//! - [`animation`]: the scene of each frame of an animation; [`apng`]: animated PNG output.
+//! - [`animation`]: the scene of each frame of an animation; [`apng`]: animated PNG output;
+//!   [`bus`]: the bytes a display is sent for a full frame or for the damage alone.
 
 #![warn(missing_docs)]
 
 pub mod animation;
 pub mod apng;
+pub mod bus;
 pub mod compare;
 pub mod edges;
 #[cfg(target_os = "linux")]

@@ -47,15 +47,16 @@ use clap::{ArgGroup, Args, Parser, Subcommand};
 use shadeline::{Rgb565, Rgb888, Vec3, MAX_DIMENSION};
 use shadeline_harness::animation::{self, Motion};
 use shadeline_harness::apng::AnimatedPng;
+use shadeline_harness::bus::{tightness, Changed, Sent};
 use shadeline_harness::compare::{self, Row};
 use shadeline_harness::edges::{self, EdgeRow};
 use shadeline_harness::image::PngFile;
-use shadeline_harness::paths::{self, Options, Path, PrepareError, PATHS};
+use shadeline_harness::paths::{self, Frame, Options, Path, PrepareError, PATHS};
 use shadeline_harness::plot::{self, PlotError};
 use shadeline_harness::progress::Progress;
 use shadeline_harness::rows::{check_memory, default_threads, new_frame, FrameError};
 use shadeline_harness::scene_file::{
-    builtin_scene, check_size, parse_scene, preset, SceneFile, PRESETS,
+    builtin_scene, check_size, parse_scene, preset, FileScene, SceneFile, PRESETS,
 };
 use std::path::PathBuf;
 use std::process::ExitCode;
@@ -763,7 +764,7 @@ struct Playback {
 }
 
 /// Renders `motion` over `play.frames` frames to an animated PNG, printing a line per frame
-/// ([`frame_report`]).
+/// ([`frame_report`]) and the damage's totals ([`damage_summary`]).
 fn run_animate(
     input: &Input,
     motion: Motion,
@@ -788,7 +789,10 @@ fn run_animate(
     let png = open_output(output)?;
     let threads = input.threads();
     let options = Input::options(&file, antialias);
-    let mut rgb = new_frame::<Rgb888>(w, h).map_err(|e| Failure::frame(FrameError::TooLarge(e)))?;
+    let too_large = |e| Failure::frame(FrameError::TooLarge(e));
+    // This frame and the one shown before it, to count the pixels that changed.
+    let mut rgb = new_frame::<Rgb888>(w, h).map_err(too_large)?;
+    let mut shown_rgb = new_frame::<Rgb888>(w, h).map_err(too_large)?;
     let mut bytes = Vec::new();
     let encoding = |e: std::io::Error| Failure::output(format!("{}: error: {e}", output.display()));
     let mut apng = AnimatedPng::new(&mut bytes, w, h, frames, play.fps).map_err(encoding)?;
@@ -799,6 +803,8 @@ fn run_animate(
         play.fps,
         DAMAGE_NOTE
     );
+    let mut shown: Option<(FileScene, Box<dyn Frame>)> = None;
+    let mut totals = DamageFigures::default();
     {
         let _bar = Progress::start("animating", u64::from(h) * u64::from(frames));
         for k in 0..frames {
@@ -811,15 +817,28 @@ fn run_animate(
                 .map_err(|e| Failure::input(format!("error: frame {k}: {e}")))?;
             let millis = start.elapsed().as_secs_f64() * 1e3;
             apng.push(&rgb).map_err(encoding)?;
-            say!("{}", frame_report(k, frames, (w, h), millis));
+            let figures = shown.as_ref().map(|(shown_scene, shown_frame)| {
+                let damage = frame.damage_since(shown_scene, shown_frame.as_ref(), &scene);
+                DamageFigures {
+                    sent: Sent::damage(&damage),
+                    changed: Changed::between(&shown_rgb, &rgb, &damage),
+                    frames: 1,
+                }
+            });
+            say!("{}", frame_report(k, frames, (w, h), millis, figures));
+            totals = totals.plus(figures.unwrap_or_default());
+            std::mem::swap(&mut rgb, &mut shown_rgb);
+            shown = Some((scene, frame));
         }
     }
     apng.finish().map_err(encoding)?;
     png.write_encoded(&bytes).map_err(write_failed(output))?;
-    let full = full_frame_bytes(w, h) * u64::from(frames);
+    say!("{}", damage_summary(&totals, (w, h)));
+    let full = Sent::full_frame(w, h).bytes() * u64::from(frames);
+    let first_then_damage = Sent::full_frame(w, h).bytes() + totals.sent.bytes();
     say!(
         "wrote {} ({} bytes, animated PNG); a display is sent {full} bytes for the {frames} \
-         full RGB565 frame{}",
+         full RGB565 frame{}, {first_then_damage} for the first whole and then the damage alone",
         output.display(),
         bytes.len(),
         if frames == 1 { "" } else { "s" }
@@ -827,27 +846,90 @@ fn run_animate(
     Ok(())
 }
 
-/// What the per-frame lines report: full frames only, until the core can say which pixels
-/// can differ between two frames.
-const DAMAGE_NOTE: &str = "bytes per frame are those of a full RGB565 frame (width x height x 2)";
+/// What the per-frame lines report.
+const DAMAGE_NOTE: &str = "bytes are what a display is sent: 2 per RGB565 pixel and 11 per \
+                           address window (CASET, RASET, RAMWR); a full frame is one window, the \
+                           damage one per damaged range of a row";
 
-/// The bytes of one full `w × h` RGB565 frame as a display is sent it.
-fn full_frame_bytes(w: u32, h: u32) -> u64 {
-    u64::from(w) * u64::from(h) * 2
+/// The damage's figures for one frame after the first, or summed over several.
+#[derive(Clone, Copy, Debug, Default)]
+struct DamageFigures {
+    /// What a display is sent for the damage alone.
+    sent: Sent,
+    /// The pixels that changed from the frame shown, and those outside the damage.
+    changed: Changed,
+    /// The frames summed.
+    frames: u32,
 }
 
-/// The line `animate` prints for frame `k` of `frames`: its number, its render time, and the
-/// bytes a display is sent for it as a full RGB565 frame.
-///
-/// DAMAGE FIGURES GO HERE: this is the one place the per-frame report is made. When the core
-/// says which pixels can differ between two frames (its damage between the frame shown and
-/// the next), this is where the damage's pixels and the bytes sent for the damage alone join
-/// the full-frame figure (and [`DAMAGE_NOTE`] changes with it).
-fn frame_report(k: u32, frames: u32, (w, h): (u32, u32), millis: f64) -> String {
+impl DamageFigures {
+    fn plus(self, other: DamageFigures) -> DamageFigures {
+        DamageFigures {
+            sent: self.sent.plus(other.sent),
+            changed: self.changed.plus(other.changed),
+            frames: self.frames + other.frames,
+        }
+    }
+
+    /// `D px in W windows, B bytes (P% of F full); changed C px, tightness T`, and
+    /// the changed pixels outside the damage when there are any.
+    fn describe(&self, full_bytes: u64) -> String {
+        let (sent, changed) = (self.sent, self.changed);
+        let tight = match tightness(sent.pixels, changed.pixels) {
+            Some(t) => format!("{t:.2}"),
+            None => "- (nothing changed)".to_string(),
+        };
+        let mut text = format!(
+            "{} px in {} window{}, {} bytes ({:.1}% of {full_bytes}); changed {} px, \
+             tightness {tight}",
+            sent.pixels,
+            sent.windows,
+            if sent.windows == 1 { "" } else { "s" },
+            sent.bytes(),
+            100.0 * sent.bytes() as f64 / full_bytes.max(1) as f64,
+            changed.pixels,
+        );
+        if changed.outside > 0 {
+            text += &format!("; {} changed px OUTSIDE the damage", changed.outside);
+        }
+        text
+    }
+}
+
+/// The line `animate` prints for frame `k` of `frames`: its number, its render time, the
+/// bytes a display is sent for it as a full RGB565 frame, and, from the second frame on,
+/// the damage since the frame before: its pixels, windows and bytes, the pixels that
+/// actually changed and the tightness (damage ÷ changed). The first frame is sent whole.
+fn frame_report(
+    k: u32,
+    frames: u32,
+    (w, h): (u32, u32),
+    millis: f64,
+    damage: Option<DamageFigures>,
+) -> String {
     let width = frames.to_string().len();
+    let full = Sent::full_frame(w, h).bytes();
+    let damage = match damage {
+        Some(figures) => format!("damage {}", figures.describe(full)),
+        None => "first frame, sent whole".to_string(),
+    };
     format!(
-        "frame {:>width$}/{frames}: {millis:7.2} ms, full frame {} bytes",
-        k + 1,
-        full_frame_bytes(w, h)
+        "frame {:>width$}/{frames}: {millis:7.2} ms, full frame {full} bytes; {damage}",
+        k + 1
+    )
+}
+
+/// The closing line: the damage summed over every frame after the first, against as many
+/// full frames.
+fn damage_summary(totals: &DamageFigures, (w, h): (u32, u32)) -> String {
+    if totals.frames == 0 {
+        return "damage total: none (one frame, sent whole)".to_string();
+    }
+    let full = Sent::full_frame(w, h).bytes() * u64::from(totals.frames);
+    format!(
+        "damage total over frames 2-{}: {}; {} changed px outside the damage",
+        totals.frames + 1,
+        totals.describe(full),
+        totals.changed.outside
     )
 }

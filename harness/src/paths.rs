@@ -6,6 +6,7 @@
 
 use crate::rows::{render_rows, render_rows_into, FrameError};
 use crate::scene_file::{FileScene, MAX_LIGHTS, MAX_SPHERES};
+use shadeline::damage::Damage;
 use shadeline::{
     FloatPath, HitRecord, Kernel, Pixel, Prepared, PreparedFixed, Render, RenderError, Rgb565,
     Rgb888, Scalar, Simd4, Simd8,
@@ -27,11 +28,27 @@ pub trait Frame: Sync {
     fn render_hits(&self, threads: usize) -> Result<Vec<HitRecord>, FrameError>;
     /// The kernel the frame's rows take, and why.
     fn kernel(&self) -> Kernel;
+    /// The frame as [`Any`](std::any::Any), so that [`Frame::damage_since`] can find the
+    /// shown frame's path.
+    fn as_any(&self) -> &dyn std::any::Any;
+    /// The pixels that can differ between `shown` (the scene of `shown_frame`, the frame
+    /// just shown) and `next` (this frame's scene): [`Damage::between`] when both frames are
+    /// of one path, the whole frame when they are not.
+    fn damage_since(&self, shown: &FileScene, shown_frame: &dyn Frame, next: &FileScene) -> Damage;
 }
 
-impl<R: Render + Sync> Frame for R {
+impl<R: Render + Sync + 'static> Frame for R {
     fn kernel(&self) -> Kernel {
         Render::kernel(self)
+    }
+    fn as_any(&self) -> &dyn std::any::Any {
+        self
+    }
+    fn damage_since(&self, shown: &FileScene, shown_frame: &dyn Frame, next: &FileScene) -> Damage {
+        match shown_frame.as_any().downcast_ref::<R>() {
+            Some(shown_frame) => Damage::between(shown, shown_frame, next, self),
+            None => Damage::full(next, self.width(), self.height()),
+        }
     }
     fn render_rgb(&self, threads: usize) -> Result<Vec<Rgb888>, FrameError> {
         render_rows(self.width(), self.height(), threads, |y, row| {
