@@ -166,3 +166,8 @@ pub use vec3::Vec3;
 #[cfg(doctest)]
 #[doc = include_str!("../README.md")]
 pub struct ReadmeDoctests;
+
+/// The Rust example of `docs/animation.md` (sending only the damage), compiled as a doctest.
+#[cfg(doctest)]
+#[doc = include_str!("../docs/animation.md")]
+pub struct AnimationDoctests;

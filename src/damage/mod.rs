@@ -66,8 +66,8 @@ pub const DEFAULT_REGIONS: usize = 32;
 ///     next.add_light(*light)?;
 /// }
 /// let (a, b) = (
-///     Prepared::<Simd8>::new(&shown, 96, 64)?,
-///     Prepared::<Simd8>::new(&next, 96, 64)?,
+///     Prepared::<Simd8, _, _>::new(&shown, 96, 64)?,
+///     Prepared::<Simd8, _, _>::new(&next, 96, 64)?,
 /// );
 /// let damage: Damage = Damage::between(&shown, &a, &next, &b);
 /// assert!(damage.pixels() < 96 * 64 / 2);
