@@ -215,28 +215,15 @@ impl Animation {
                 scene,
                 |c| c,
                 |_, s| s,
-                |j, l| match l {
-                    _ if j != i => l,
-                    Light::Distant {
-                        direction,
-                        color,
-                        intensity,
-                    } => Light::Distant {
-                        direction: rotate_y(direction, 0.15 * kf),
-                        color,
-                        intensity,
-                    },
-                    Light::Point {
-                        position,
-                        color,
-                        intensity,
-                        radius,
-                    } => Light::Point {
-                        position: rotate_y(position, 0.15 * kf),
-                        color,
-                        intensity,
-                        radius,
-                    },
+                |j, l| {
+                    if j != i {
+                        l
+                    } else {
+                        l.moved(
+                            |direction| rotate_y(direction, 0.15 * kf),
+                            |position| rotate_y(position, 0.15 * kf),
+                        )
+                    }
                 },
             ),
             Animation::Slide(i) => rebuild(
@@ -392,28 +379,15 @@ fn random_change(scene: &common::TestScene, rng: &mut Rng) -> Option<common::Tes
             }
             s
         },
-        |i, l| match l {
-            _ if kind != 1 || i != light => l,
-            Light::Distant {
-                direction,
-                color,
-                intensity,
-            } => Light::Distant {
-                direction: rotate_y(direction, turn),
-                color,
-                intensity,
-            },
-            Light::Point {
-                position,
-                color,
-                intensity,
-                radius,
-            } => Light::Point {
-                position: rotate_y(position, turn),
-                color,
-                intensity,
-                radius,
-            },
+        |i, l| {
+            if kind != 1 || i != light {
+                l
+            } else {
+                l.moved(
+                    |direction| rotate_y(direction, turn),
+                    |position| rotate_y(position, turn),
+                )
+            }
         },
     )
 }

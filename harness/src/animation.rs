@@ -14,7 +14,7 @@
 //! range, or into a sphere light) is an error naming the frame.
 
 use crate::scene_file::FileScene;
-use shadeline::{Light, SceneError, Vec3};
+use shadeline::{SceneError, Vec3};
 use std::fmt;
 
 /// What moves.
@@ -115,28 +115,9 @@ pub fn scene_at(
             let camera = scene.camera();
             let axis = unit(camera.up);
             let turn = |v: Vec3| rotate(v, axis, angle);
-            lights[index] = match lights[index] {
-                Light::Distant {
-                    direction,
-                    color,
-                    intensity,
-                } => Light::Distant {
-                    direction: turn(direction),
-                    color,
-                    intensity,
-                },
-                Light::Point {
-                    position,
-                    color,
-                    intensity,
-                    radius,
-                } => Light::Point {
-                    position: add(turn(sub(position, camera.look_at)), camera.look_at),
-                    color,
-                    intensity,
-                    radius,
-                },
-            };
+            lights[index] = lights[index].moved(turn, |position| {
+                add(turn(sub(position, camera.look_at)), camera.look_at)
+            });
         }
         Motion::MoveSphere { sphere, to } => {
             let t = if frames > 1 {
@@ -205,6 +186,7 @@ fn rotate(v: Vec3, k: [f64; 3], angle: f64) -> Vec3 {
 mod tests {
     use super::*;
     use crate::scene_file::preset;
+    use shadeline::Light;
 
     fn close(a: Vec3, b: [f32; 3]) -> bool {
         (a.x - b[0]).abs() < 1e-4 && (a.y - b[1]).abs() < 1e-4 && (a.z - b[2]).abs() < 1e-4

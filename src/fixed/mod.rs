@@ -153,6 +153,7 @@ mod kernel_models;
 mod kernel_sphere;
 mod mul;
 mod narrow;
+mod narrow_caster_prepare;
 mod narrow_hit;
 mod narrow_lobe;
 #[cfg(feature = "narrow-precise")]
@@ -162,7 +163,6 @@ mod narrow_point_prepare;
 mod narrow_point_shadow;
 #[cfg(feature = "narrow-precise")]
 mod narrow_precise;
-mod narrow_caster_prepare;
 mod narrow_prepare;
 mod narrow_roots;
 mod narrow_run;

@@ -6,9 +6,9 @@
 //! its scaled integers.
 
 use super::convert::to_f32;
-use super::narrow_caster_prepare::point_casters;
 use super::exact::{arriving, Exact};
 use super::mul::{dot_ii, mul_128, mul_ii};
+use super::narrow_caster_prepare::point_casters;
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::prepare::{
@@ -558,7 +558,6 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         sum
     }
-
 }
 
 /// The quadrics' scales of a sphere of radius `r` (raw, `r2 = r²`) whose centre is `|oc|²`
@@ -604,7 +603,6 @@ fn hit_constants(oc_len2: i64, r2: i64, r: i64) -> (u32, u8, Exact) {
 mod tests {
     extern crate std;
     use super::*;
-    use crate::vec3::Vec3;
 
     /// Values at and around every power of two of both signs, and a xorshift stream.
     fn values() -> impl Iterator<Item = i128> {

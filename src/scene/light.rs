@@ -76,6 +76,47 @@ pub enum Light {
 }
 
 impl Light {
+    /// The same light moved, for animations: a distant light's `direction` through `turn`,
+    /// a point light's `position` through `place`; its colour, intensity and radius kept.
+    /// An orbit passes one rotation as `turn` and the same rotation about its centre as
+    /// `place`. The result is checked as any light is, when it is added to a scene.
+    ///
+    /// ```
+    /// use shadeline::{Light, LinearRgb, Vec3};
+    /// let lamp = Light::Point {
+    ///     position: Vec3::new(0.0, 4.0, 0.0),
+    ///     color: LinearRgb::new(1.0, 1.0, 1.0),
+    ///     intensity: 1000.0,
+    ///     radius: 0.0,
+    /// };
+    /// let lifted = lamp.moved(|d| d, |p| p + Vec3::new(0.0, 1.0, 0.0));
+    /// assert!(matches!(lifted, Light::Point { position, .. } if position.y == 5.0));
+    /// ```
+    pub fn moved(self, turn: impl FnOnce(Vec3) -> Vec3, place: impl FnOnce(Vec3) -> Vec3) -> Light {
+        match self {
+            Light::Distant {
+                direction,
+                color,
+                intensity,
+            } => Light::Distant {
+                direction: turn(direction),
+                color,
+                intensity,
+            },
+            Light::Point {
+                position,
+                color,
+                intensity,
+                radius,
+            } => Light::Point {
+                position: place(position),
+                color,
+                intensity,
+                radius,
+            },
+        }
+    }
+
     pub(super) fn check(&self, item: Item) -> Result<(), SceneError> {
         let c = Check { item };
         let (color, intensity) = match *self {

@@ -9,9 +9,7 @@
 use crate::{build_scene, FuzzScene, SceneInput, LIGHTS, SPHERES};
 use arbitrary::Arbitrary;
 use shadeline::damage::Damage;
-use shadeline::{
-    Light, LinearRgb, Prepared, PreparedFixed, Render, Scalar, Scene, Simd4, Simd8, Vec3,
-};
+use shadeline::{LinearRgb, Prepared, PreparedFixed, Render, Scalar, Scene, Simd4, Simd8, Vec3};
 
 /// Tallest frame the target renders: the damage is a question of geometry, not of size.
 pub const MAX_HEIGHT: u32 = 40;
@@ -70,28 +68,7 @@ fn changed(scene: &FuzzScene, change: &ChangeIn) -> Option<FuzzScene> {
         if kind == 1 && i == light {
             let (sin, cos) = a.sin_cos();
             let turn = |v: Vec3| Vec3::new(cos * v.x + sin * v.z, v.y, -sin * v.x + cos * v.z);
-            l = match l {
-                Light::Distant {
-                    direction,
-                    color,
-                    intensity,
-                } => Light::Distant {
-                    direction: turn(direction),
-                    color,
-                    intensity,
-                },
-                Light::Point {
-                    position,
-                    color,
-                    intensity,
-                    radius,
-                } => Light::Point {
-                    position: position + offset,
-                    color,
-                    intensity,
-                    radius,
-                },
-            };
+            l = l.moved(turn, |position| position + offset);
         }
         out.add_light(l).ok()?;
     }
