@@ -363,43 +363,7 @@ pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
         at.arrive(scene, m, &mut sums, (l, arriving, t_max))
     };
     for (li, light) in scene.lights().iter().enumerate() {
-        let blocked = match *light {
-            Light::Distant {
-                direction,
-                color,
-                intensity,
-            } => {
-                let i = intensity as f64;
-                arrive(
-                    D3::of(direction).unit().mul(-1.0),
-                    [color.r as f64 * i, color.g as f64 * i, color.b as f64 * i],
-                    f64::INFINITY,
-                )
-            }
-            Light::Point {
-                position,
-                color,
-                intensity,
-                radius,
-            } if radius > 0.0 => {
-                let power = [color.r, color.g, color.b].map(|c| c as f64 * intensity as f64);
-                let light = SphereLight {
-                    center: D3::of(position),
-                    radius: radius as f64,
-                    power,
-                };
-                light.integrate(p, at.shadow_origin, strata, &mut arrive)
-            }
-            Light::Point {
-                position,
-                color,
-                intensity,
-                ..
-            } => {
-                let (l, arriving, dist) = point_arrival(p, D3::of(position), color, intensity);
-                arrive(l, arriving, dist)
-            }
-        };
+        let blocked = light_arrivals(light, (p, at.shadow_origin), strata, &mut arrive);
         if blocked && li < 32 {
             shadowed |= 1 << li;
         }
@@ -410,6 +374,54 @@ pub fn shade_pixel_with_strata<const S: usize, const L: usize>(
             sphere: Some(k as u16),
             shadowed,
         },
+    }
+}
+
+/// One light's arrival at the hit `p` (shadow rays from `shadow_origin`): each arriving
+/// direction, with what it carries and the shadow ray's length, goes to `arrive` (a sphere
+/// light's every sample); whether the light is blocked.
+fn light_arrivals(
+    light: &Light,
+    (p, shadow_origin): (D3, D3),
+    strata: usize,
+    arrive: &mut impl FnMut(D3, [f64; 3], f64) -> bool,
+) -> bool {
+    match *light {
+        Light::Distant {
+            direction,
+            color,
+            intensity,
+        } => {
+            let i = intensity as f64;
+            arrive(
+                D3::of(direction).unit().mul(-1.0),
+                [color.r as f64 * i, color.g as f64 * i, color.b as f64 * i],
+                f64::INFINITY,
+            )
+        }
+        Light::Point {
+            position,
+            color,
+            intensity,
+            radius,
+        } if radius > 0.0 => {
+            let power = [color.r, color.g, color.b].map(|c| c as f64 * intensity as f64);
+            let light = SphereLight {
+                center: D3::of(position),
+                radius: radius as f64,
+                power,
+            };
+            light.integrate(p, shadow_origin, strata, arrive)
+        }
+        Light::Point {
+            position,
+            color,
+            intensity,
+            ..
+        } => {
+            let (l, arriving, dist) = point_arrival(p, D3::of(position), color, intensity);
+            arrive(l, arriving, dist)
+        }
     }
 }
 

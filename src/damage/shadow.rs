@@ -67,38 +67,8 @@ pub(super) fn shadow_ball(
     let mut s0 = (along - big).max(dist - rho);
     let mut s1 = along + big;
     if light_radius <= 0.0 {
-        // A point light: the volume's lines leave the light within `α` of the axis, and
-        // enter the receiver where its distance from the light is `f(γ)`, `γ` the line's
-        // angle from the receiver's centre: `f` grows with `γ` up to the tangent.
-        let sin_alpha = (rho / dist).min(1.0);
-        let alpha = libm::asinf(sin_alpha);
-        let beta = libm::acosf((along / receiver_dist).clamp(-1.0, 1.0));
-        let sin_tangent = (big / receiver_dist).min(1.0);
-        let tangent_angle = libm::asinf(sin_tangent);
-        let entry = |gamma: f32| {
-            let (s, c) = (libm::sinf(gamma), libm::cosf(gamma));
-            let inside = big * big - receiver_dist * receiver_dist * s * s;
-            receiver_dist * c - libm::sqrtf(inside.max(0.0))
-        };
-        let near = (beta - alpha).max(0.0);
-        if near >= tangent_angle {
-            // Every line of the volume misses the receiver.
-            return None;
-        }
-        let tangent_len = libm::sqrtf((receiver_dist * receiver_dist - big * big).max(0.0));
-        let far_gamma = beta + alpha;
-        let nearest = entry(near);
-        // Lines near the tangent: the points with `N·L ≥ −HORIZON` reach this far.
-        let far = if far_gamma < tangent_angle
-            && libm::sinf(far_gamma) < sin_tangent * libm::sqrtf(1.0 - HORIZON * HORIZON)
-        {
-            entry(far_gamma)
-        } else {
-            big * HORIZON + libm::sqrtf(big * big * HORIZON * HORIZON + tangent_len * tangent_len)
-        };
-        // `nearest` is a distance from the light, the axial distance at least its cosine.
-        s0 = s0.max(nearest * libm::cosf(alpha) - 2.0 * eps);
-        s1 = s1.min(far + 2.0 * eps);
+        let (near, far) = point_entry(receiver_dist, along, big, rho / dist, eps)?;
+        (s0, s1) = (s0.max(near), s1.min(far));
     }
     // An empty range, or a NaN from degenerate input: no patch.
     if s0.partial_cmp(&s1).is_none_or(|o| o.is_gt()) {
@@ -106,6 +76,50 @@ pub(super) fn shadow_ball(
     }
     let reach = offset(s0).max(offset(s1));
     Some(chain(apex, axis, s0, s1, reach, receiver.center, big))
+}
+
+/// For a point light (no radius): the axial range from the light (`near`, `far`) in which
+/// the shadow volume's lines (within `asin(sin_alpha)` of the axis) enter a receiver of
+/// radius `big` whose centre lies `receiver_dist` from the light and `along` the axis, up
+/// to the points with `N·L ≥ −HORIZON`; `None` if every line misses the receiver.
+fn point_entry(
+    receiver_dist: f32,
+    along: f32,
+    big: f32,
+    sin_alpha: f32,
+    eps: f32,
+) -> Option<(f32, f32)> {
+    // A point light: the volume's lines leave the light within `α` of the axis, and
+    // enter the receiver where its distance from the light is `f(γ)`, `γ` the line's
+    // angle from the receiver's centre: `f` grows with `γ` up to the tangent.
+    let sin_alpha = sin_alpha.min(1.0);
+    let alpha = libm::asinf(sin_alpha);
+    let beta = libm::acosf((along / receiver_dist).clamp(-1.0, 1.0));
+    let sin_tangent = (big / receiver_dist).min(1.0);
+    let tangent_angle = libm::asinf(sin_tangent);
+    let entry = |gamma: f32| {
+        let (s, c) = (libm::sinf(gamma), libm::cosf(gamma));
+        let inside = big * big - receiver_dist * receiver_dist * s * s;
+        receiver_dist * c - libm::sqrtf(inside.max(0.0))
+    };
+    let near = (beta - alpha).max(0.0);
+    if near >= tangent_angle {
+        // Every line of the volume misses the receiver.
+        return None;
+    }
+    let tangent_len = libm::sqrtf((receiver_dist * receiver_dist - big * big).max(0.0));
+    let far_gamma = beta + alpha;
+    let nearest = entry(near);
+    // Lines near the tangent: the points with `N·L ≥ −HORIZON` reach this far.
+    let far = if far_gamma < tangent_angle
+        && libm::sinf(far_gamma) < sin_tangent * libm::sqrtf(1.0 - HORIZON * HORIZON)
+    {
+        entry(far_gamma)
+    } else {
+        big * HORIZON + libm::sqrtf(big * big * HORIZON * HORIZON + tangent_len * tangent_len)
+    };
+    // `nearest` is a distance from the light, the axial distance at least its cosine.
+    Some((nearest * libm::cosf(alpha) - 2.0 * eps, far + 2.0 * eps))
 }
 
 /// The balls along the axis from `s0` to `s1` (`CHAIN` equal pieces) holding the volume of
