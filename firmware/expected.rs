@@ -107,9 +107,9 @@ pub const MATRIX_FIXED_COVERED: u64 = 50_132;
 
 /// CRC32s of all the frames (1 to `ANIMATION_FRAMES`, one after the other) of each animation of
 /// `firmware/animation.rs` (orbit, bounce) at `ANIMATION_WIDTH × ANIMATION_HEIGHT`, rendered in
-/// full by `PreparedFixed::<5, 2>` into `Rgb565`: with micromath's sine and cosine (what the
-/// firmware keeps), then with libm's (feature `animation-libm`). The firmware's `anim-orbit`
-/// and `anim-bounce` runs (feature `animation`).
+/// full by `PreparedFixed::<5, 2>` into `Rgb565`: with micromath's sine and cosine (feature
+/// `animation-micromath`), then with libm's (what the firmware keeps). The firmware's
+/// `anim-orbit` and `anim-bounce` runs (feature `animation`).
 pub const ANIMATION_FRAMES_RGB565_CRC32: [[u32; 2]; 2] = [
     [0x06cb_cb8f, 0x2ced_3c49],
     [0xd8c2_27db, 0xd598_09f5],

@@ -121,9 +121,9 @@ fn main() -> ! {
     #[cfg(feature = "matrix")]
     session.fixed_matrix(&mut *SCENE, &mut *FIXED, &mut LINE[..], true);
     // The animations through the line buffer: the M0 has no room for a framebuffer.
-    #[cfg(all(feature = "animation", not(feature = "animation-libm")))]
-    session.animations::<common::animation::Micromath>(ANIMATION, &mut LINE[..], None);
-    #[cfg(feature = "animation-libm")]
+    #[cfg(all(feature = "animation", not(feature = "animation-micromath")))]
     session.animations::<common::animation::Libm>(ANIMATION, &mut LINE[..], None);
+    #[cfg(feature = "animation-micromath")]
+    session.animations::<common::animation::Micromath>(ANIMATION, &mut LINE[..], None);
     exit(session.finish() == Outcome::Pass)
 }

@@ -363,14 +363,14 @@ fn main() -> ! {
     }
     // The animations: rows and damaged pieces through a line buffer, and the framebuffer as
     // the display the damage run keeps up to date.
-    #[cfg(all(feature = "animation", not(feature = "animation-libm")))]
-    session.animations::<common::animation::Micromath>(
+    #[cfg(all(feature = "animation", not(feature = "animation-micromath")))]
+    session.animations::<common::animation::Libm>(
         ANIMATION,
         &mut ANIMATION_LINE[..],
         Some(&mut FRAME[..]),
     );
-    #[cfg(feature = "animation-libm")]
-    session.animations::<common::animation::Libm>(
+    #[cfg(feature = "animation-micromath")]
+    session.animations::<common::animation::Micromath>(
         ANIMATION,
         &mut ANIMATION_LINE[..],
         Some(&mut FRAME[..]),
