@@ -444,21 +444,25 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
     }
 
     /// The meter, for measured regions of other modules.
+    #[cfg(feature = "animation")]
     pub(crate) fn meter(&mut self) -> &mut Meter<C> {
         &mut self.meter
     }
 
     /// The board's name.
+    #[cfg(feature = "animation")]
     pub(crate) fn board_name(&self) -> &'static str {
         self.board.name()
     }
 
     /// Writes a report line.
+    #[cfg(feature = "animation")]
     pub(crate) fn note_bytes(&mut self, text: &[u8]) {
         self.board.write(text);
     }
 
     /// The lowest address the stack may grow down to, and its top.
+    #[cfg(feature = "animation")]
     pub(crate) fn stack_bounds(&self) -> (usize, usize) {
         self.board.stack_limits()
     }
