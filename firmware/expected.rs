@@ -104,3 +104,29 @@ pub const MATRIX_RGB565_CRC32: [[u32; 2]; 3] = [
 pub const MATRIX_SCALAR_COVERED: u64 = 50_132;
 /// Pixels of each matrix frame whose primary ray hits a sphere on the fixed path.
 pub const MATRIX_FIXED_COVERED: u64 = 50_132;
+
+/// CRC32s of all the frames (1 to `ANIMATION_FRAMES`, one after the other) of each animation of
+/// `firmware/animation.rs` (orbit, bounce) at `ANIMATION_WIDTH × ANIMATION_HEIGHT`, rendered in
+/// full by `PreparedFixed::<5, 2>` into `Rgb565`: with micromath's sine and cosine (feature
+/// `animation-micromath`), then with libm's (what the firmware keeps). The firmware's
+/// `anim-orbit` and `anim-bounce` runs (feature `animation`).
+pub const ANIMATION_FRAMES_RGB565_CRC32: [[u32; 2]; 2] = [
+    [0x06cb_cb8f, 0x2ced_3c49],
+    [0xd8c2_27db, 0xd598_09f5],
+];
+/// CRC32s of the last frame (frame `ANIMATION_FRAMES`) of each animation, in the same order:
+/// what the M4F's framebuffer must hold after the damage run. Both animations end where they
+/// began, so each is the floor scene's own frame (`MATRIX_RGB565_CRC32`'s fixed `floor`).
+pub const ANIMATION_LAST_RGB565_CRC32: [[u32; 2]; 2] = [
+    [0xb6e6_70bd, 0xb6e6_70bd],
+    [0xb6e6_70bd, 0xb6e6_70bd],
+];
+/// CRC32s of everything damage-only rendering sends a display over each animation (frames 1
+/// to `ANIMATION_FRAMES`, each the damage against the frame before): per piece, its `x`, `y`
+/// and length as little-endian `u16`s, then its pixels. Same order as above.
+pub const ANIMATION_DAMAGE_STREAM_CRC32: [[u32; 2]; 2] = [
+    [0xde99_1abc, 0x498f_cbb7],
+    [0xdb01_968f, 0x3296_ef13],
+];
+/// Damaged pixels over frames 1 to `ANIMATION_FRAMES` of each animation. Same order as above.
+pub const ANIMATION_DAMAGE_PIXELS: [[u64; 2]; 2] = [[1_559_040, 1_153_780], [1_559_040, 1_153_756]];

@@ -275,3 +275,88 @@ fn matrix_fixed_crcs_and_covered_counts_match_the_firmware_constants() {
          firmware/expected.rs"
     );
 }
+
+/// The animations of the firmware's feature `animation`: the same scenes, from the same file
+/// (whose report names and indices only the firmware reads).
+#[allow(dead_code)]
+mod animation {
+    include!("../firmware/animation.rs");
+}
+
+/// One animation as the firmware draws it, with the sine and cosine of `T`: frame 0 on a
+/// display, then each frame's damage against the one before, rendered in pieces of at most a
+/// row (the firmware's line buffer) and laid over the display. Fails unless the display then
+/// holds each frame exactly as rendered in full, and unless all but two frames differ from the
+/// one before (so the check is never vacuous). Returns the CRC of frames 1 to N one after the
+/// other, the CRC of the last frame, the CRC of every piece sent (its `x`, `y` and length as
+/// `u16`s, then its pixels: the firmware's stream) and the damaged pixels.
+fn animation_figures<T: animation::Trig>(motion: animation::Motion) -> (u32, u32, u32, u64) {
+    use animation::{animation_scene, motion_at, ANIMATION_FRAMES, ANIMATION_HEIGHT};
+    use shadeline::damage::Damage;
+    let (w, h) = (animation::ANIMATION_WIDTH, ANIMATION_HEIGHT);
+    let scene = |k| animation_scene(motion, motion_at::<T>(motion, k)).expect("scene builds");
+    let prepare = |s: &animation::AnimationScene| PreparedFixed::<5, 2>::new(s, w, h).unwrap();
+    let (mut shown_scene, mut shown_pixels) = (scene(0), Vec::new());
+    let mut shown = prepare(&shown_scene);
+    let mut display = frame(&shown);
+    let (mut stream, mut damaged, mut frames, mut changed) = (Vec::new(), 0u64, Vec::new(), 0);
+    let mut row = vec![Rgb565::default(); w as usize];
+    for k in 1..=ANIMATION_FRAMES {
+        let next_scene = scene(k);
+        let next = prepare(&next_scene);
+        let damage: Damage = Damage::between(&shown_scene, &shown, &next_scene, &next);
+        damage
+            .render(&next, &mut row, |x, y, pixels: &[Rgb565]| {
+                stream.extend([x, y, pixels.len() as u32].map(|v| Rgb565(v as u16)));
+                stream.extend_from_slice(pixels);
+                let at = (y * w + x) as usize;
+                display[at..at + pixels.len()].copy_from_slice(pixels);
+                damaged += pixels.len() as u64;
+                Ok::<(), shadeline::RenderError>(())
+            })
+            .expect("damage renders");
+        let full = frame(&next);
+        let wrong = display.iter().zip(&full).filter(|(a, b)| a != b).count();
+        assert_eq!(wrong, 0, "{motion:?} frame {k}: pixels the damage missed");
+        changed += u32::from(shown_pixels != full);
+        frames.extend_from_slice(&full);
+        (shown_scene, shown, shown_pixels) = (next_scene, next, full);
+    }
+    // The bounce's two peaks fall between frames (7.5 and 22.5 of 30): the frames either side
+    // are the same scene, and their damage is empty.
+    assert!(
+        changed >= ANIMATION_FRAMES - 2,
+        "{motion:?}: only {changed} frames differ from the one before"
+    );
+    let last = rgb565_crc32(&display);
+    (rgb565_crc32(&frames), last, rgb565_crc32(&stream), damaged)
+}
+
+#[test]
+fn animation_crcs_and_damage_match_the_firmware_constants() {
+    use animation::{Libm, Micromath, MOTIONS};
+    let found = [
+        MOTIONS.map(animation_figures::<Micromath>),
+        MOTIONS.map(animation_figures::<Libm>),
+    ];
+    let frames = found.map(|m| m.map(|f| f.0));
+    let last = found.map(|m| m.map(|f| f.1));
+    let stream = found.map(|m| m.map(|f| f.2));
+    let pixels = found.map(|m| m.map(|f| f.3));
+    assert_eq!(
+        (frames, last, stream, pixels),
+        (
+            expected::ANIMATION_FRAMES_RGB565_CRC32,
+            expected::ANIMATION_LAST_RGB565_CRC32,
+            expected::ANIMATION_DAMAGE_STREAM_CRC32,
+            expected::ANIMATION_DAMAGE_PIXELS
+        ),
+        "host animation figures ([micromath, libm] × [orbit, bounce]): all frames' CRCs \
+         {frames:#010x?}, last frame CRCs {last:#010x?}, damage stream CRCs {stream:#010x?}, damaged pixels {pixels:?}: update \
+         firmware/expected.rs"
+    );
+    assert_ne!(
+        frames[0], frames[1],
+        "micromath and libm move the scene differently"
+    );
+}

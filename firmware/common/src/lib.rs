@@ -8,6 +8,7 @@
 //! | [`stack`] | painting the free stack and finding the deepest word the render touched |
 //! | [`meter`] | instruction counting with the counter's own cost calibrated out |
 //! | [`run`] | one path end to end: build in place, prepare and render measured, CRC, report |
+//! | `animation` | an orbiting light and a bouncing sphere, in full and as damage (feature `animation`) |
 //! | [`matrix`] | the scene matrix (`floor`, `lamp`, `three-lights`) on the fixed and scalar paths |
 //! | `cortex_m_board` | SysTick counter, semihosting, stack limits (Cortex-M targets only) |
 //! | [`expected`] | the frame size and the CRCs to match (`firmware/expected.rs`) |
@@ -17,6 +18,8 @@
 
 #![no_std]
 
+#[cfg(feature = "animation")]
+pub mod animation;
 #[cfg(target_arch = "arm")]
 pub mod cortex_m_board;
 pub mod crc32;

@@ -443,9 +443,33 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         }
     }
 
+    /// The meter, for measured regions of other modules.
+    #[cfg(feature = "animation")]
+    pub(crate) fn meter(&mut self) -> &mut Meter<C> {
+        &mut self.meter
+    }
+
+    /// The board's name.
+    #[cfg(feature = "animation")]
+    pub(crate) fn board_name(&self) -> &'static str {
+        self.board.name()
+    }
+
+    /// Writes a report line.
+    #[cfg(feature = "animation")]
+    pub(crate) fn note_bytes(&mut self, text: &[u8]) {
+        self.board.write(text);
+    }
+
+    /// The lowest address the stack may grow down to, and its top.
+    #[cfg(feature = "animation")]
+    pub(crate) fn stack_bounds(&self) -> (usize, usize) {
+        self.board.stack_limits()
+    }
+
     /// Paints the free stack below the current frame; returns the top of the painted range.
     #[inline(never)]
-    fn paint(&self) -> usize {
+    pub(crate) fn paint(&self) -> usize {
         let (lowest, _) = self.board.stack_limits();
         let paint_top = (self.board.stack_pointer().saturating_sub(stack::GUARD)) & !3;
         // SAFETY: [lowest, paint_top) is below the live stack by GUARD bytes (room for
@@ -455,7 +479,9 @@ impl<B: Board, C: InstructionCounter> Session<B, C> {
         paint_top
     }
 
-    fn note_stack(&mut self, lowest: usize, paint_top: usize, top: usize) {
+    /// Counts the deepest word below `paint_top` that was touched since [`Self::paint`]
+    /// toward the session's peak stack.
+    pub(crate) fn note_stack(&mut self, lowest: usize, paint_top: usize, top: usize) {
         // SAFETY: the range `paint` just painted.
         let deepest = unsafe { stack::deepest_touched(lowest, paint_top) };
         self.peak_stack = self.peak_stack.max(top - deepest);

@@ -15,7 +15,9 @@
 //! point light at the same place (`fixed-sphere-light`, `fixed-point-light`), in the same
 //! buffers too (the preset's capacities are the exponent series'); with `matrix`, the scene
 //! matrix at 320×240 (`fixed-floor`, `fixed-lamp`, `fixed-three-lights`), in the same
-//! buffers, which then take the matrix's capacities.
+//! buffers, which then take the matrix's capacities; with `animation`, an orbiting light and
+//! a bouncing sphere over the floor scene, in full and as damage (`anim-orbit`,
+//! `anim-bounce`), through the same line buffer.
 //!
 //! Run with `cargo m0` from `firmware/` (the alias and the QEMU runner are in
 //! `.cargo/config.toml`).
@@ -58,6 +60,11 @@ fn main() -> ! {
     static mut AREA_SCENE: Option<Scene<5, 1>> = None;
     #[cfg(all(feature = "area-lights", feature = "matrix"))]
     static mut AREA_FIXED: PreparedFixed<5, 1> = PreparedFixed::EMPTY;
+
+    // The animations' two scenes and prepared frames, the one shown and the next.
+    #[cfg(feature = "animation")]
+    static mut ANIMATION: common::animation::AnimationSlots =
+        common::animation::AnimationSlots::EMPTY;
 
     let board = CortexMBoard::new("m0");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
@@ -113,5 +120,10 @@ fn main() -> ! {
     session.fixed_area_lights(AREA_SCENE, AREA_FIXED, &mut LINE[..], true);
     #[cfg(feature = "matrix")]
     session.fixed_matrix(&mut *SCENE, &mut *FIXED, &mut LINE[..], true);
+    // The animations through the line buffer: the M0 has no room for a framebuffer.
+    #[cfg(all(feature = "animation", not(feature = "animation-micromath")))]
+    session.animations::<common::animation::Libm>(ANIMATION, &mut LINE[..], None);
+    #[cfg(feature = "animation-micromath")]
+    session.animations::<common::animation::Micromath>(ANIMATION, &mut LINE[..], None);
     exit(session.finish() == Outcome::Pass)
 }

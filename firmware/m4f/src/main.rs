@@ -133,6 +133,14 @@ fn main() -> ! {
     #[cfg(feature = "matrix")]
     static mut MATRIX_FIXED: common::MatrixFixed = PreparedFixed::EMPTY;
 
+    // The animations' two scenes and prepared frames, the one shown and the next.
+    #[cfg(feature = "animation")]
+    static mut ANIMATION: common::animation::AnimationSlots =
+        common::animation::AnimationSlots::EMPTY;
+    #[cfg(feature = "animation")]
+    static mut ANIMATION_LINE: [Rgb565; common::animation::ANIMATION_WIDTH as usize] =
+        [Rgb565(0); common::animation::ANIMATION_WIDTH as usize];
+
     let board = CortexMBoard::new("m4f");
     let Some(peripherals) = cortex_m::Peripherals::take() else {
         exit(false)
@@ -353,5 +361,19 @@ fn main() -> ! {
         session.scalar_matrix(MATRIX_SCENE, MATRIX_SCALAR, &mut FRAME[..]);
         session.fixed_matrix(MATRIX_SCENE, MATRIX_FIXED, &mut FRAME[..], false);
     }
+    // The animations: rows and damaged pieces through a line buffer, and the framebuffer as
+    // the display the damage run keeps up to date.
+    #[cfg(all(feature = "animation", not(feature = "animation-micromath")))]
+    session.animations::<common::animation::Libm>(
+        ANIMATION,
+        &mut ANIMATION_LINE[..],
+        Some(&mut FRAME[..]),
+    );
+    #[cfg(feature = "animation-micromath")]
+    session.animations::<common::animation::Micromath>(
+        ANIMATION,
+        &mut ANIMATION_LINE[..],
+        Some(&mut FRAME[..]),
+    );
     exit(session.finish() == Outcome::Pass)
 }
