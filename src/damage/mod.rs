@@ -96,11 +96,7 @@ impl<const N: usize> Damage<N> {
         width: u32,
         height: u32,
     ) -> Self {
-        Damage {
-            view: View::of(scene, width, height),
-            whole: true,
-            balls: heapless::Vec::new(),
-        }
+        Self::empty(View::of(scene, width, height), true)
     }
 
     /// No pixel of a `width × height` frame.
@@ -109,9 +105,14 @@ impl<const N: usize> Damage<N> {
         width: u32,
         height: u32,
     ) -> Self {
+        Self::empty(View::of(scene, width, height), false)
+    }
+
+    /// A damage of `view` with no ball: the whole frame if `whole`, else no pixel.
+    fn empty(view: View, whole: bool) -> Self {
         Damage {
-            view: View::of(scene, width, height),
-            whole: false,
+            view,
+            whole,
             balls: heapless::Vec::new(),
         }
     }
