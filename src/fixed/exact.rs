@@ -48,7 +48,8 @@ pub(crate) fn shift_saturating(p: u64, e: i32) -> u32 {
     }
     let s = e.unsigned_abs();
     let v = if e >= 0 {
-        if s >= 64 || p.leading_zeros() < s {
+        // `p << s` loses bits iff `p` is above `u64::MAX >> s` (no leading-zero count).
+        if s >= 64 || p > u64::MAX >> s {
             return u32::MAX;
         }
         p << s

@@ -77,6 +77,44 @@ pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
     n
 }
 
+/// The leading zeros of a nonzero `u32` rounded down to even, by a four-step binary search:
+/// [`search_leading_zeros32`] without its last step, which only adds the odd one.
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+pub(crate) fn search_even_leading_zeros32(x: u32) -> u32 {
+    let (mut v, mut n) = (x, 0);
+    if v >> 16 == 0 {
+        n += 16;
+        v <<= 16;
+    }
+    if v >> 24 == 0 {
+        n += 8;
+        v <<= 8;
+    }
+    if v >> 28 == 0 {
+        n += 4;
+        v <<= 4;
+    }
+    if v >> 30 == 0 {
+        n += 2;
+    }
+    n
+}
+
+/// The leading zeros of a nonzero `u32`: `CLZ` where the core has it, the binary search on
+/// ARMv6-M (where `u32::leading_zeros` is a routine call).
+#[inline(always)]
+pub(crate) fn leading_zeros32(x: u32) -> u32 {
+    #[cfg(shadeline_short_mul)]
+    {
+        search_leading_zeros32(x)
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        x.leading_zeros()
+    }
+}
+
 /// `a·b`, exact.
 #[inline(always)]
 pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
@@ -259,6 +297,10 @@ mod tests {
             }
         }
         assert_eq!(search_leading_zeros(0), 64);
+        for v in numbers().filter(|&v| v != 0) {
+            assert_eq!(search_even_leading_zeros32(v), v.leading_zeros() & !1, "{v:#x}");
+            assert_eq!(leading_zeros32(v), v.leading_zeros(), "{v:#x}");
+        }
     }
 
     #[test]

@@ -54,7 +54,9 @@ pub(super) fn mul_q15(a: i32, b: i32) -> i32 {
 pub(super) fn shift_u32(v: u32, e: i32) -> u32 {
     if e >= 0 {
         let e = e as u32;
-        if e >= 32 || (v != 0 && v.leading_zeros() < e) {
+        // `v << e` loses bits iff `v` is above `u32::MAX >> e`: no leading-zero count, which
+        // is a routine call on ARMv6-M.
+        if e >= 32 || v > u32::MAX >> e {
             if v == 0 {
                 0
             } else {

@@ -4,7 +4,7 @@
 //! ([`fast_lobe`]), and the lobe `(1 − h)ⁿ` itself ([`narrow_lobe`]).
 
 use super::exact::{shift_saturating, Exact};
-use super::mul::{mul_ii, mul_iu, mul_uu};
+use super::mul::{leading_zeros32, mul_ii, mul_iu, mul_uu};
 use super::narrow_roots::rsqrt;
 use super::narrow_scale::high_bits;
 use super::pow::{exp2_neg_q16, INV_LN2_F31, LOG_TABLE};
@@ -190,7 +190,7 @@ pub(super) fn narrow_lobe(h: u32, n: Exact) -> u32 {
         (mul_uu(h, q) >> 35) as u32
     } else {
         let c = ONE_Q31 - h; // 1 − h in Q31, > 0
-        let e = c.leading_zeros(); // ≥ 1
+        let e = leading_zeros32(c); // ≥ 1
         let m = c << e; // m₀·(1 + δ) in U1F31
         let (inv_m0, log2_m0) = LOG_TABLE
             .get(((m >> 25) & 63) as usize)

@@ -124,7 +124,7 @@ pub(super) fn sqrt_q30(x: u32) -> i32 {
 pub(super) fn even_leading_zeros(x: u32) -> u32 {
     #[cfg(shadeline_short_mul)]
     {
-        super::mul::search_leading_zeros32(x) & !1
+        super::mul::search_even_leading_zeros32(x)
     }
     #[cfg(not(shadeline_short_mul))]
     {
