@@ -48,8 +48,7 @@ pub(crate) fn shift_saturating(p: u64, e: i32) -> u32 {
     }
     let s = e.unsigned_abs();
     let v = if e >= 0 {
-        // `p << s` loses bits iff `p` is above `u64::MAX >> s` (no leading-zero count).
-        if s >= 64 || p > u64::MAX >> s {
+        if s >= 64 || super::mul::shift_overflows(p, s) {
             return u32::MAX;
         }
         p << s

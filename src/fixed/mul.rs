@@ -77,6 +77,34 @@ pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
     n
 }
 
+/// Whether `x << s` (`s < 64`) loses bits. Where the core has `CLZ`, from the leading-zero
+/// count (one or two `CLZ`; the 64-bit shift takes more); on ARMv6-M and RV32IMAC, which
+/// count by a search or a routine call, one comparison with `u64::MAX >> s`.
+#[inline(always)]
+pub(crate) fn shift_overflows(x: u64, s: u32) -> bool {
+    #[cfg(any(shadeline_short_mul, target_arch = "riscv32"))]
+    {
+        x > u64::MAX >> s
+    }
+    #[cfg(not(any(shadeline_short_mul, target_arch = "riscv32")))]
+    {
+        x.leading_zeros() < s
+    }
+}
+
+/// Whether `x << s` (`s < 32`) loses bits: [`shift_overflows`] for a `u32`.
+#[inline(always)]
+pub(crate) fn shift_overflows32(x: u32, s: u32) -> bool {
+    #[cfg(any(shadeline_short_mul, target_arch = "riscv32"))]
+    {
+        x > u32::MAX >> s
+    }
+    #[cfg(not(any(shadeline_short_mul, target_arch = "riscv32")))]
+    {
+        x.leading_zeros() < s
+    }
+}
+
 /// The leading zeros of a nonzero `u32` rounded down to even, by a four-step binary search:
 /// [`search_leading_zeros32`] without its last step, which only adds the odd one.
 #[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
@@ -297,8 +325,19 @@ mod tests {
             }
         }
         assert_eq!(search_leading_zeros(0), 64);
+        for v in numbers() {
+            for s in 0..32 {
+                let wide = (v as u64) << s;
+                assert_eq!(shift_overflows32(v, s), wide >> 32 != 0, "{v:#x} << {s}");
+                assert_eq!(shift_overflows(wide, s), (wide as u128) << s >> 64 != 0);
+            }
+        }
         for v in numbers().filter(|&v| v != 0) {
-            assert_eq!(search_even_leading_zeros32(v), v.leading_zeros() & !1, "{v:#x}");
+            assert_eq!(
+                search_even_leading_zeros32(v),
+                v.leading_zeros() & !1,
+                "{v:#x}"
+            );
             assert_eq!(leading_zeros32(v), v.leading_zeros(), "{v:#x}");
         }
     }

@@ -54,9 +54,7 @@ pub(super) fn mul_q15(a: i32, b: i32) -> i32 {
 pub(super) fn shift_u32(v: u32, e: i32) -> u32 {
     if e >= 0 {
         let e = e as u32;
-        // `v << e` loses bits iff `v` is above `u32::MAX >> e`: no leading-zero count, which
-        // is a routine call on ARMv6-M.
-        if e >= 32 || v > u32::MAX >> e {
+        if e >= 32 || super::mul::shift_overflows32(v, e) {
             if v == 0 {
                 0
             } else {
