@@ -513,7 +513,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
     /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
     /// `N·V`; `None` for the background. Each active track's `E′` moves one pixel right
-    /// where the loop reads it; every hit's `t` is compared, the first hit winning a tie.
+    /// where the loop reads it. Where two or more tracks hit, their `t` are compared, the
+    /// first hit winning a tie; a lone hit needs no `t` (about half the pixels of
+    /// overlapping spans, such as a sphere's corners over a floor).
     /// Out of line (only where spans overlap), except on ARMv6-M: there, inlined into the
     /// pixel loop, the loop is both smaller and faster; on the M4F and RV32 inlining costs
     /// instructions (`docs/performance.md, "Choices measured"`).
@@ -521,7 +523,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn narrow_surface(&self, run: &mut NarrowRun<S, L>) -> Option<Surface> {
         let (sigma, sigma2) = sigma_of(run.a.v);
-        let mut best: Option<(i64, Surface)> = None;
+        // The nearest hit so far, and its `t` once a second hit needs it (`i64::MAX` before:
+        // a hit's `t` is below 2⁴⁸).
+        let mut best: Option<Surface> = None;
+        let mut nearest = i64::MAX;
         for &i in &run.active {
             let t = run.tracks.get_mut(i as usize);
             debug_assert!(t.is_some(), "track {i} of {}", run.tracks.len());
@@ -546,12 +551,19 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 sigma,
                 sigma2,
             };
-            let t = self.narrow_t(&surface, run.d);
-            if best.is_none_or(|(nearest, _)| t < nearest) {
-                best = Some((t, surface));
+            if let Some(first) = &best {
+                if nearest == i64::MAX {
+                    nearest = self.narrow_t(first, run.d);
+                }
+                let t = self.narrow_t(&surface, run.d);
+                if t >= nearest {
+                    continue;
+                }
+                nearest = t;
             }
+            best = Some(surface);
         }
-        best.map(|(_, surface)| surface)
+        best
     }
 
     /// The `lights` and `combine` stages at `surface` (under the run's current pixel).
