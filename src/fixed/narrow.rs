@@ -247,6 +247,9 @@ pub(super) struct Surface {
     pub nv: i32,
     pub sigma: i32,
     pub sigma2: u32,
+    /// Whether the pixel's row lies in the sphere's shadow rows (`NarrowSphere::shadows`):
+    /// outside them no caster is tested.
+    pub shadows: bool,
 }
 
 /// `N·L` and `L·D̂` (both Q15) at a pixel: `D·L` as the run holds it, `σ` (Q15), `σ²`
@@ -377,11 +380,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             for (g, light) in g.iter_mut().zip(lights).take(self.lights.len()) {
                 *g = light.g.step_at_cell(y_offset, x_offset);
             }
+            let (first, end) = n.shadows;
             let track = Track {
                 index,
                 span,
                 e: n.e.step_at_cell(y_offset, x_offset),
-                e_shift: (n.e_shift as u32),
+                e_shift: u16::from(n.e_shift),
+                shadows: u32::from(first) <= y && y < u32::from(end),
                 g,
             };
             // As many tracks as spheres: cannot fail.
@@ -500,7 +505,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return None;
         }
         let (sigma, sigma2) = sigma_of(run.a.v);
-        let e29 = (high_bits(e, t.e_shift) as u32).min(1 << 30);
+        let e29 = (high_bits(e, u32::from(t.e_shift)) as u32).min(1 << 30);
         Some(Surface {
             index: t.index,
             track,
@@ -508,6 +513,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
             sigma,
             sigma2,
+            shadows: t.shadows,
         })
     }
 
@@ -541,7 +547,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 continue;
             }
             // E′ ≤ |d|² ≤ 2 on a hit: about 2³⁰ at most in Q29.
-            let e29 = (high_bits(e, t.e_shift) as u32).min(1 << 30);
+            let e29 = (high_bits(e, u32::from(t.e_shift)) as u32).min(1 << 30);
             let surface = Surface {
                 index: t.index,
                 track: i as usize,
@@ -550,6 +556,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
                 sigma,
                 sigma2,
+                shadows: t.shadows,
             };
             if let Some(first) = &best {
                 if nearest == i64::MAX {
@@ -666,7 +673,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         } = *surface;
         let mut blocked = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
         if !blocked && light.casters != 0 && nl < light.ahead && (nl * nl) as u32 <= light.reach {
-            let got = if DISTANCE_TEST {
+            let got = if !surface.shadows {
+                Casters::Left(0)
+            } else if DISTANCE_TEST {
                 self.distant_casters(light_index, light.casters, (fast_t(ns, nv), d, sigma))
             } else {
                 Casters::Left(light.casters)

@@ -234,7 +234,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         fast: &FastPoint,
     ) -> bool {
         let ray = (position, d, surface.sigma);
-        let left = match self.point_casters(light_index, light, ray, fast) {
+        let found = if surface.shadows {
+            self.point_casters(light_index, light, ray, fast)
+        } else {
+            Casters::Left(0)
+        };
+        let left = match found {
             Casters::Blocked => {
                 #[cfg(test)]
                 assert!(

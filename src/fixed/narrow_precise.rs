@@ -175,16 +175,22 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 if nl < 0 && (mul_ii(nl as i32, nl as i32) >> 30) as u64 > ns.shadow_limit as u64 {
                     return None;
                 }
-                if light.casters != 0
-                    && self.point_ray_blocked(
+                let ray = |casters| {
+                    self.point_ray_blocked(
                         surface,
                         (sphere, ns),
                         light_index,
                         d,
                         &geometry,
-                        light.casters,
+                        casters,
                     )
-                {
+                };
+                #[cfg(test)]
+                assert!(
+                    surface.shadows || light.casters == 0 || !ray(light.casters),
+                    "a caster blocks a ray outside the sphere's shadow rows"
+                );
+                if light.casters != 0 && surface.shadows && ray(light.casters) {
                     return None;
                 }
                 (nl, ld, arriving(*power, geometry.inv))
@@ -196,8 +202,16 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     return None;
                 }
                 if light.casters != 0 && nl15 < light.ahead && (nl15 * nl15) as u32 <= light.reach {
-                    let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
-                    if self.narrow_blocked(surface.index, n, light_index, light.casters) {
+                    let blocked = || {
+                        let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
+                        self.narrow_blocked(surface.index, n, light_index, light.casters)
+                    };
+                    #[cfg(test)]
+                    assert!(
+                        surface.shadows || !blocked(),
+                        "a caster blocks a ray outside the sphere's shadow rows"
+                    );
+                    if surface.shadows && blocked() {
                         return None;
                     }
                 }

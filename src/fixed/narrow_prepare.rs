@@ -385,6 +385,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             t_exponent: (t_num.exponent + 8).clamp(-128, 127) as i8,
             quick_margin: self.quick_margin(i),
             touching: self.touching(i),
+            shadows: self.shadow_rows(i, view),
             fast_lobe_max,
             terms,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
@@ -396,9 +397,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             gain: (1u64 << (bits + 15)).checked_div(r as u64).unwrap_or(0) as u32,
             b_rises: b[1] > 0,
             #[cfg(not(feature = "full-width"))]
-            rows: outline_rows(&e, self.height),
+            rows: to_u16(outline_rows(&e, self.height)),
             #[cfg(not(feature = "full-width"))]
-            columns: outline_columns(&e, self.width),
+            columns: to_u16(outline_columns(&e, self.width)),
             e,
         };
         match self.spheres.get_mut(i) {
@@ -739,4 +740,14 @@ mod tests {
         }
         assert!(checked > 1000, "{checked} cases");
     }
+}
+
+/// A range of rows or columns in 16 bits: each end is at most the frame's size, which is at
+/// most `MAX_DIMENSION`.
+#[cfg(not(feature = "full-width"))]
+fn to_u16((start, end): (u32, u32)) -> (u16, u16) {
+    (
+        start.min(u16::MAX as u32) as u16,
+        end.min(u16::MAX as u32) as u16,
+    )
 }

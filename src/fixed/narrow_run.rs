@@ -23,7 +23,10 @@ pub(super) struct Track<const L: usize> {
     pub(super) span: Span,
     /// `E′` (see the module docs), and the shift that takes it to Q29.
     pub(super) e: Step,
-    pub(super) e_shift: u32,
+    pub(super) e_shift: u16,
+    /// Whether the row lies in the sphere's shadow rows (`NarrowSphere::shadows`): outside
+    /// them no caster is tested.
+    pub(super) shadows: bool,
     /// `G` per light.
     pub(super) g: [Step; L],
 }

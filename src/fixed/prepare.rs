@@ -105,11 +105,13 @@ pub(crate) struct NarrowSphere {
     /// `E′`, see above.
     pub e: Quadric,
     /// The rows and the columns on which `E′` can be at least 0, each `[start, end)` (see
-    /// `outline`): the spans without the full-width kernel.
+    /// `outline`): the spans without the full-width kernel. 16 bits, as a frame is at most
+    /// `MAX_DIMENSION` each way: the per-pixel fields after them stay within reach of one
+    /// base register on ARMv6-M.
     #[cfg(not(feature = "full-width"))]
-    pub rows: (u32, u32),
+    pub rows: (u16, u16),
     #[cfg(not(feature = "full-width"))]
-    pub columns: (u32, u32),
+    pub columns: (u16, u16),
     /// The spheres within `4ε` of this one (bit `k` for sphere `k`; a sphere resting on a
     /// floor sphere, and the floor under it): only from these can a lifted point start
     /// inside a caster, which the caster test then checks for (`narrow_blocked`).
@@ -120,6 +122,10 @@ pub(crate) struct NarrowSphere {
     /// caster's cylinder, from the largest `|O − C_k|` the sphere's lifted points can have.
     /// `−1`: no quick test.
     pub quick_margin: i32,
+    /// The rows of this sphere's pixels where a caster can block a light (`[start, end)`;
+    /// empty if it has no caster): outside them the shadow stages skip the casters
+    /// ([`super::narrow_shadow_rows`]).
+    pub shadows: (u16, u16),
 }
 
 /// A point light as the narrow kernel sees it from the eye: `Q = P − eye` as a unit vector

@@ -392,11 +392,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     #[inline(always)]
     fn sphere_span(&self, s: &FixedSphere, y: u32) -> Option<Span> {
         let n = s.narrow.as_ref()?;
-        if !(n.rows.0 <= y && y < n.rows.1) {
+        if !(u32::from(n.rows.0) <= y && y < u32::from(n.rows.1)) {
             return None;
         }
         let dy = self.height as i32 - 2 * y as i32 - 1;
-        outline_on_row(&n.e, dy, self.width, n.columns)
+        let columns = (u32::from(n.columns.0), u32::from(n.columns.1));
+        outline_on_row(&n.e, dy, self.width, columns)
     }
 
     /// `f` on the row's runs: one run, the spans' hull (see the module docs).
