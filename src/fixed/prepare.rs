@@ -330,9 +330,11 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) antialias: bool,
 }
 
-/// Sphere `i` of `scene`, `s`, converted and checked: its centre and radius times `scale`,
-/// its offset from the scaled `eye`, its material's constants and, with the full-width
-/// kernel, its spans in `view`.
+/// Sphere `i` of `scene`, `s`, converted and checked, pushed onto `spheres`: its centre and
+/// radius times `scale`, its offset from the scaled `eye`, its material's constants and,
+/// with the full-width kernel, its spans in `view`. Pushed here, not returned in a `Result`
+/// for the caller to push: on ARMv6-M, where the whole prepare is inlined, that return is a
+/// copy of the sphere, more code than the push.
 #[inline(always)]
 fn fixed_sphere<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
@@ -341,7 +343,8 @@ fn fixed_sphere<const S: usize, const L: usize>(
     scale: f32,
     eye: V3<Len>,
     #[cfg(feature = "full-width")] view: &View,
-) -> Result<FixedSphere, RenderError> {
+    spheres: &mut heapless::Vec<FixedSphere, S>,
+) -> Result<(), RenderError> {
     let item = Item::Sphere(i);
     let m = &s.material;
     let center = to_len(s.center, scale, item, "center")?;
@@ -360,7 +363,7 @@ fn fixed_sphere<const S: usize, const L: usize>(
     let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
     let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
     let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
-    Ok(FixedSphere {
+    let sphere = FixedSphere {
         center,
         eye_offset: each3(|c| eye[c] - center[c]),
         radius_sq: I32F32::from_bits(radius_raw * radius_raw),
@@ -386,7 +389,11 @@ fn fixed_sphere<const S: usize, const L: usize>(
         radius,
         #[cfg(all(feature = "area-lights", feature = "full-width"))]
         widening: widenings(m.shininess, &params),
-    })
+    };
+    // Same capacity as the scene: cannot fail.
+    let pushed = spheres.push(sphere);
+    debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
+    Ok(())
 }
 
 /// The float paths' constants of material `m` (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1
@@ -634,12 +641,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
         for (i, s) in scene.spheres().iter().enumerate() {
             #[cfg(feature = "full-width")]
-            let sphere = fixed_sphere(scene, i, s, scale, eye, &view)?;
+            fixed_sphere(scene, i, s, scale, eye, &view, &mut self.spheres)?;
             #[cfg(not(feature = "full-width"))]
-            let sphere = fixed_sphere(scene, i, s, scale, eye)?;
-            // Same capacity as the scene: cannot fail.
-            let pushed = self.spheres.push(sphere);
-            debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
+            fixed_sphere(scene, i, s, scale, eye, &mut self.spheres)?;
         }
         for (i, l) in scene.lights().iter().enumerate() {
             let light = fixed_light(Item::Light(i), l, scale, k)?;
