@@ -335,7 +335,7 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
 /// with the full-width kernel, its spans in `view`. Pushed here, not returned in a `Result`
 /// for the caller to push: on ARMv6-M, where the whole prepare is inlined, that return is a
 /// copy of the sphere, more code than the push.
-#[inline(always)]
+#[inline]
 fn fixed_sphere<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
     i: usize,
@@ -423,7 +423,7 @@ fn material_params(m: &Material, item: Item) -> Result<Params<f32>, RenderError>
 /// Light `item` of the scene, `l`, converted and checked: a distant light's direction and
 /// arriving levels, a point light's position times `scale = 2^k` and its power times the
 /// scale squared, and with `area-lights` a sphere light's scaled radius.
-#[inline(always)]
+#[inline]
 fn fixed_light(item: Item, l: &Light, scale: f32, k: i32) -> Result<FixedLight, RenderError> {
     Ok(match *l {
         Light::Distant {
