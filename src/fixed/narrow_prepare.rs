@@ -501,7 +501,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .narrow_casters(i, l.map(Unit::from_bits))
                 .ok_or("center")?,
         };
-        let across = self.across_from_eye(own.center.map(|c| c.to_bits()), light);
+        let across = self.across_from_eye(own.eye_offset.map(|c| c.to_bits()), light);
         #[cfg(feature = "narrow-precise")]
         let cone = match self.lights.get(light) {
             Some(FixedLight::Point { position, .. }) => self.point_cone(own, position),
