@@ -620,9 +620,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         height: u32,
     ) -> Result<bool, RenderError> {
         self.clear();
-        let plane = Plane::of(scene, width, height)?;
+        // The scale first: it refuses nothing, and taken before the plane's checks it leaves
+        // less code on ARMv6-M.
         let k = scale_log2(scene);
         let scale = pow2(k);
+        let plane = Plane::of(scene, width, height)?;
         let camera = scene.camera();
         let eye = to_len(camera.position, scale, Item::Camera, "position")?;
         let epsilon = fixed_bits_i32(scene.ray_epsilon() * scale, 16)
