@@ -700,6 +700,47 @@ pub fn terms_with<T: Pow>(
     if !present.normalized {
         return classic;
     }
+    let sum = lobe_sum(
+        p,
+        masks,
+        present,
+        [n, to_light, view],
+        (cosine, positive, lobe),
+        area,
+    );
+    #[cfg(feature = "models")]
+    let diffuse = if present.oren_nayar {
+        let n_dot_v = n.dot(view).max(zero);
+        let l_dot_v = to_light.dot(view);
+        let on = oren_nayar(p.on_a, p.on_b, diffuse_cos, n_dot_v, l_dot_v);
+        T::select(masks.oren_nayar, on, diffuse_cos)
+    } else {
+        diffuse_cos
+    };
+    #[cfg(not(feature = "models"))]
+    let diffuse = diffuse_cos;
+    let (f, diffuse_scale) = fresnel(p, masks, present, to_light, view);
+    let sum = sum * n_dot_l;
+    Terms {
+        diffuse: T::select(masks.normalized, diffuse * diffuse_scale, classic.diffuse),
+        specular: Vec3::select(masks.normalized, f.scale(sum), classic.specular),
+    }
+}
+
+/// The normalized models' lobes in [`terms_with`], before the factor `N·L`: lobe 0's
+/// weight times `lobe` (its `max(0, c)^n`, `c` being `cosine`), plus lobes 1 and 2 where a
+/// lane has them and some lane's `cosine` is positive, each widened under a sphere light;
+/// with `models`, GGX's lobe from `geometry` (`[N, L, V]`) in the lanes of GGX.
+#[inline(always)]
+#[cfg_attr(not(feature = "models"), allow(unused_variables))]
+fn lobe_sum<T: Pow>(
+    p: &Params<T>,
+    masks: &Masks<T>,
+    present: Present,
+    geometry: [Vec3<T>; 3],
+    (cosine, positive, lobe): (T, bool, T),
+    area: Option<Area<T>>,
+) -> T {
     let mut sum = p.weight[0] * lobe;
     if present.more_lobes && positive {
         for (w, e) in p.weight[1..].iter().zip(p.more_shininess) {
@@ -713,6 +754,7 @@ pub fn terms_with<T: Pow>(
     }
     #[cfg(feature = "models")]
     if present.ggx {
+        let [n, to_light, view] = geometry;
         let g = ggx(p.alpha2, n, to_light, view);
         let g = match area {
             Some(a) => g * ggx_widening(p.alpha2, a.spread),
@@ -720,19 +762,23 @@ pub fn terms_with<T: Pow>(
         };
         sum = T::select(masks.ggx, p.weight[0] * g, sum);
     }
-    #[cfg(feature = "models")]
-    let diffuse = if present.oren_nayar {
-        let n_dot_v = n.dot(view).max(zero);
-        let l_dot_v = to_light.dot(view);
-        let on = oren_nayar(p.on_a, p.on_b, diffuse_cos, n_dot_v, l_dot_v);
-        T::select(masks.oren_nayar, on, diffuse_cos)
-    } else {
-        diffuse_cos
-    };
-    #[cfg(not(feature = "models"))]
-    let diffuse = diffuse_cos;
-    let one = T::splat(1.0);
-    let (f, diffuse_scale) = if present.schlick {
+    sum
+}
+
+/// The normalized models' Fresnel factor in [`terms_with`], per channel, and the diffuse
+/// term's scale: in the lanes of Schlick's factor `F = F₀ + (1 − F₀)·(1 − L·H)⁵` and
+/// `1 − diffuse_loss·F` (`F`'s first channel; `diffuse_loss` is 1 for a dielectric with
+/// `ior`, else 0), elsewhere `F₀` and 1.
+#[inline(always)]
+fn fresnel<T: Pow>(
+    p: &Params<T>,
+    masks: &Masks<T>,
+    present: Present,
+    to_light: Vec3<T>,
+    view: Vec3<T>,
+) -> (Vec3<T>, T) {
+    let (zero, one) = (T::splat(0.0), T::splat(1.0));
+    if present.schlick {
         let w = schlick_weight(half_angle_cosine(to_light, view));
         let w = T::select(masks.schlick, w, zero);
         let f = Vec3::new(
@@ -743,11 +789,6 @@ pub fn terms_with<T: Pow>(
         (f, one - p.diffuse_loss * f.x)
     } else {
         (p.f0, one)
-    };
-    let sum = sum * n_dot_l;
-    Terms {
-        diffuse: T::select(masks.normalized, diffuse * diffuse_scale, classic.diffuse),
-        specular: Vec3::select(masks.normalized, f.scale(sum), classic.specular),
     }
 }
 

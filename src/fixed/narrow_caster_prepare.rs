@@ -29,16 +29,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// A raw point `p`'s offset from the eye across light `light`, `(p − eye)·u` and
     /// `(p − eye)·v` with `u`, `v` the light's [`PreparedFixed::across`], in the quick caster
     /// test's units, rounded to the nearest and held within `2³⁰` (a sphere's centre is well
-    /// inside).
-    pub(super) fn across_from_eye(&self, p: V3<i32>, light: usize) -> [i32; 2] {
+    /// inside). From `eye_offset = eye − p` (raw, as [`FixedSphere::eye_offset`] holds it for
+    /// a sphere's centre): `−(eye − p)·u`, the same integer as `p·u − eye·u` with three
+    /// products where that takes six.
+    pub(super) fn across_from_eye(&self, eye_offset: V3<i32>, light: usize) -> [i32; 2] {
         let shift = 15 + self.quick_shift;
         let limit = 1i64 << 30;
-        let eye = self.eye.map(|c| c.to_bits());
         self.across.get(light).map_or([0; 2], |uv| {
             // The offset times u in raw units times 2¹⁵, to the quick test's units.
             uv.map(|u| {
                 let u = u.map(i32::from);
-                let at = (dot_ii(p, u) - dot_ii(eye, u) + (1 << (shift - 1))) >> shift;
+                let at = ((1 << (shift - 1)) - dot_ii(eye_offset, u)) >> shift;
                 at.clamp(-limit, limit) as i32
             })
         })

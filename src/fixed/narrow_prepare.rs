@@ -96,6 +96,32 @@ fn lobe_range(sphere: &FixedSphere, n: f32) -> (f32, f32, f32) {
     (sum, low, high)
 }
 
+/// The lobe stage's limits of sphere `s`, of shininess `n`, under lights whose brightest
+/// channels sum to `intensity` (`terms`: the normalized models' fast terms): the lobes'
+/// cutoff ([`lobe_cutoff`]) and the fast lobe's largest value ([`fast_lobe_max`]), with the
+/// lobes' largest exponent and their scale, which the fast point light's limits take.
+#[inline(always)]
+fn lobe_limits(s: &FixedSphere, (n, intensity, terms): (f32, f32, bool)) -> (u32, u32, (f32, f32)) {
+    // The lobes' scale and exponents: `ks` and `n` for the classic models; for the
+    // normalized ones the sum of the lobes' weights (F ≤ 1), the least exponent for the
+    // cutoff (the widest lobe) and the largest for the error (the steepest).
+    let (scale, n_low, n_high) = if terms {
+        lobe_range(s, n)
+    } else {
+        (to_f32(s.ks.to_bits() as i64, 16), n, n)
+    };
+    let ks_intensity = scale * intensity;
+    let cutoff = lobe_cutoff(ks_intensity, n_low);
+    // The fast lobe's error (see `fast_lobe_max`). For the normalized models a limit of
+    // at least one step: where lobe 0 is below it, so is every lobe of a larger exponent,
+    // and whatever the exponent its error is far below a level.
+    let fast_lobe_max = match fast_lobe_max(ks_intensity, n_high, H_ERROR) {
+        0 if terms => 1,
+        max => max,
+    };
+    (cutoff, fast_lobe_max, (n_high, scale))
+}
+
 /// The index pairs `(a, b)` of a quadric's coefficients in the order of [`Quadric::c`]:
 /// `c₀₀` from the directions `(0, 0)`, `c₁₀` from `(0, 1)` …, `c₀₂` from `(2, 2)`.
 const PAIRS: [(usize, usize); 6] = [(0, 0), (0, 1), (0, 2), (1, 1), (1, 2), (2, 2)];
@@ -334,7 +360,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Some(s) = self.spheres.get(i) else {
             return Err("center");
         };
-        let (eye_offset, ks) = (s.eye_offset, s.ks);
+        let eye_offset = s.eye_offset;
         let eps = self.epsilon.to_bits() as i64;
         let oc = eye_offset.map(|c| c.to_bits() as i64);
         let r = s.radius.to_bits() as i64;
@@ -353,30 +379,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if quadric((r2 - oc_len2, gram, &b), Form::E, &e_den, &mut e).is_none() {
             return Err("radius");
         }
+        #[cfg_attr(not(feature = "narrow-precise"), allow(unused_variables))]
+        let (cutoff, fast_lobe_max, lobes) = lobe_limits(s, (n, intensity, terms));
         self.prepare_sphere_lights(scene, i, (view, gram, &b), &g_den)?;
-        let s = self.spheres.get(i).ok_or("center")?;
         let bits = 64 - r.leading_zeros();
         let (rf, ef) = (r as f32, eps as f32);
-        // The lobes' scale and exponents: `ks` and `n` for the classic models; for the
-        // normalized ones the sum of the lobes' weights (F ≤ 1), the least exponent for the
-        // cutoff (the widest lobe) and the largest for the error (the steepest).
-        let (scale, n_low, n_high) = if terms {
-            lobe_range(s, n)
-        } else {
-            (to_f32(ks.to_bits() as i64, 16), n, n)
-        };
-        let ks_intensity = scale * intensity;
-        let cutoff = lobe_cutoff(ks_intensity, n_low);
-        // The fast lobe's error (see `fast_lobe_max`). For the normalized models a limit of
-        // at least one step: where lobe 0 is below it, so is every lobe of a larger exponent,
-        // and whatever the exponent its error is far below a level.
-        let fast_lobe_max = match fast_lobe_max(ks_intensity, n_high, H_ERROR) {
-            0 if terms => 1,
-            max => max,
-        };
         let (c_q30, c_shift, t_num) = hit_constants(oc_len2, r2, r);
         #[cfg(feature = "narrow-precise")]
-        self.prepare_point_fast(i, (n_high, scale));
+        self.prepare_point_fast(i, lobes);
         let narrow = NarrowSphere {
             c_q30,
             c_shift,
@@ -492,7 +502,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .narrow_casters(i, l.map(Unit::from_bits))
                 .ok_or("center")?,
         };
-        let across = self.across_from_eye(own.center.map(|c| c.to_bits()), light);
+        let across = self.across_from_eye(own.eye_offset.map(|c| c.to_bits()), light);
         #[cfg(feature = "narrow-precise")]
         let cone = match self.lights.get(light) {
             Some(FixedLight::Point { position, .. }) => self.point_cone(own, position),

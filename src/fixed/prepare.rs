@@ -336,10 +336,12 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     pub(crate) antialias: bool,
 }
 
-/// Sphere `i` of `scene`, `s`, converted and checked: its centre and radius times `scale`,
-/// its offset from the scaled `eye`, its material's constants and, with the full-width
-/// kernel, its spans in `view`.
-#[inline(always)]
+/// Sphere `i` of `scene`, `s`, converted and checked, pushed onto `spheres`: its centre and
+/// radius times `scale`, its offset from the scaled `eye`, its material's constants and,
+/// with the full-width kernel, its spans in `view`. Pushed here, not returned in a `Result`
+/// for the caller to push: on ARMv6-M, where the whole prepare is inlined, that return is a
+/// copy of the sphere, more code than the push.
+#[inline]
 fn fixed_sphere<const S: usize, const L: usize>(
     scene: &Scene<S, L>,
     i: usize,
@@ -347,7 +349,8 @@ fn fixed_sphere<const S: usize, const L: usize>(
     scale: f32,
     eye: V3<Len>,
     #[cfg(feature = "full-width")] view: &View,
-) -> Result<FixedSphere, RenderError> {
+    spheres: &mut heapless::Vec<FixedSphere, S>,
+) -> Result<(), RenderError> {
     let item = Item::Sphere(i);
     let m = &s.material;
     let center = to_len(s.center, scale, item, "center")?;
@@ -366,7 +369,7 @@ fn fixed_sphere<const S: usize, const L: usize>(
     let kd_albedo = to_levels([kd_albedo.x, kd_albedo.y, kd_albedo.z], item, "kd")?;
     let [ks, _, _] = to_levels([params.ks, 0.0, 0.0], item, "ks")?;
     let unit = |v: f32| (v.clamp(0.0, 1.0) * (1u32 << 30) as f32) as u32;
-    Ok(FixedSphere {
+    let sphere = FixedSphere {
         center,
         eye_offset: each3(|c| eye[c] - center[c]),
         radius_sq: I32F32::from_bits(radius_raw * radius_raw),
@@ -392,7 +395,11 @@ fn fixed_sphere<const S: usize, const L: usize>(
         radius,
         #[cfg(all(feature = "area-lights", feature = "full-width"))]
         widening: widenings(m.shininess, &params),
-    })
+    };
+    // Same capacity as the scene: cannot fail.
+    let pushed = spheres.push(sphere);
+    debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
+    Ok(())
 }
 
 /// The float paths' constants of material `m` (`kd·albedo`, or `kd·albedo/π`; `ks`, or 1
@@ -422,7 +429,7 @@ fn material_params(m: &Material, item: Item) -> Result<Params<f32>, RenderError>
 /// Light `item` of the scene, `l`, converted and checked: a distant light's direction and
 /// arriving levels, a point light's position times `scale = 2^k` and its power times the
 /// scale squared, and with `area-lights` a sphere light's scaled radius.
-#[inline(always)]
+#[inline]
 fn fixed_light(item: Item, l: &Light, scale: f32, k: i32) -> Result<FixedLight, RenderError> {
     Ok(match *l {
         Light::Distant {
@@ -619,9 +626,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         height: u32,
     ) -> Result<bool, RenderError> {
         self.clear();
-        let plane = Plane::of(scene, width, height)?;
+        // The scale first: it refuses nothing, and taken before the plane's checks it leaves
+        // less code on ARMv6-M.
         let k = scale_log2(scene);
         let scale = pow2(k);
+        let plane = Plane::of(scene, width, height)?;
         let camera = scene.camera();
         let eye = to_len(camera.position, scale, Item::Camera, "position")?;
         let epsilon = fixed_bits_i32(scene.ray_epsilon() * scale, 16)
@@ -640,12 +649,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 
         for (i, s) in scene.spheres().iter().enumerate() {
             #[cfg(feature = "full-width")]
-            let sphere = fixed_sphere(scene, i, s, scale, eye, &view)?;
+            fixed_sphere(scene, i, s, scale, eye, &view, &mut self.spheres)?;
             #[cfg(not(feature = "full-width"))]
-            let sphere = fixed_sphere(scene, i, s, scale, eye)?;
-            // Same capacity as the scene: cannot fail.
-            let pushed = self.spheres.push(sphere);
-            debug_assert!(pushed.is_ok(), "sphere {i} beyond the prepared capacity");
+            fixed_sphere(scene, i, s, scale, eye, &mut self.spheres)?;
         }
         for (i, l) in scene.lights().iter().enumerate() {
             let light = fixed_light(Item::Light(i), l, scale, k)?;
