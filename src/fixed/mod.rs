@@ -168,6 +168,7 @@ mod narrow_roots;
 mod narrow_run;
 mod narrow_scale;
 mod narrow_shadow;
+#[cfg(feature = "shadow-rows")]
 mod narrow_shadow_rows;
 #[cfg(feature = "narrow-precise")]
 mod narrow_terms;

@@ -176,6 +176,10 @@ pub(crate) enum PointSeen {
     Precise,
 }
 
+/// Whether the frame's shadow rows (`NarrowSphere::shadows`, feature `shadow-rows`) can skip
+/// casters: without the feature every pixel tests them, and the flag folds away.
+const SHADOW_ROWS: bool = cfg!(feature = "shadow-rows");
+
 /// Whether the shadow test toward a distant light starts with the distance test from the
 /// fast `X` (`PreparedFixed::distant_casters`): on ARMv6-M, where it spares most pixels the
 /// normal's six 32×32→64-bit products (calls there) and shortens the exponent series' frame
@@ -513,7 +517,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
             sigma,
             sigma2,
-            shadows: t.shadows,
+            shadows: !SHADOW_ROWS || t.shadows,
         })
     }
 
@@ -556,7 +560,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
                 sigma,
                 sigma2,
-                shadows: t.shadows,
+                shadows: !SHADOW_ROWS || t.shadows,
             };
             if let Some(first) = &best {
                 if nearest == i64::MAX {

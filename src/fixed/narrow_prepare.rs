@@ -395,7 +395,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             t_exponent: (t_num.exponent + 8).clamp(-128, 127) as i8,
             quick_margin: self.quick_margin(i),
             touching: self.touching(i),
-            shadows: self.shadow_rows(i, view),
+            shadows: self.sphere_shadow_rows(i, view),
             fast_lobe_max,
             terms,
             shadow_limit: (ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef)) * (1u64 << 30) as f32)
@@ -417,6 +417,21 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             None => return Err("center"),
         }
         Ok(())
+    }
+
+    /// `NarrowSphere::shadows` of sphere `i`: its shadow rows ([`super::narrow_shadow_rows`]),
+    /// or every row without the feature `shadow-rows`.
+    #[inline(always)]
+    fn sphere_shadow_rows(&self, i: usize, view: &NarrowView) -> (u16, u16) {
+        #[cfg(feature = "shadow-rows")]
+        {
+            self.shadow_rows(i, view)
+        }
+        #[cfg(not(feature = "shadow-rows"))]
+        {
+            let _ = (i, view);
+            (0, self.height.min(u16::MAX as u32) as u16)
+        }
     }
 
     /// Sphere `i`'s constants for each light (`narrow_light`), pushed as its entry of

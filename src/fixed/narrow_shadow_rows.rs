@@ -52,6 +52,7 @@ fn greater(a: f32, b: f32) -> bool {
     a.partial_cmp(&b) == Some(core::cmp::Ordering::Greater)
 }
 
+#[inline(never)]
 fn dot(a: P3, b: P3) -> f32 {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
@@ -61,7 +62,14 @@ fn minus(a: P3, b: P3) -> P3 {
 }
 
 fn length(a: P3) -> f32 {
-    libm::sqrtf(dot(a, a))
+    root(dot(a, a))
+}
+
+/// `√x` (`libm`'s, correctly rounded), out of line: on a core without an FPU every copy is
+/// a few hundred bytes of flash, and the prepare takes it a few dozen times a sphere.
+#[inline(never)]
+fn root(x: f32) -> f32 {
+    libm::sqrtf(x)
 }
 
 fn raw(v: &V3<Len>) -> P3 {
@@ -97,7 +105,7 @@ impl Volume {
                 if !greater(d0, 2.5 * r) {
                     return None;
                 }
-                let slope = r / libm::sqrtf(d0 * d0 - r * r) * (1.0 + 1.0 / 1024.0);
+                let slope = r / root(d0 * d0 - r * r) * (1.0 + 1.0 / 1024.0);
                 Some(Volume {
                     origin: p,
                     dir: v.map(|c| c / d0),
@@ -154,6 +162,7 @@ impl Screen {
     /// screen coordinates (their ratios to the depth) between those of the intervals' ends.
     /// On a floor, whose caps are flat and seen at a slant, this is several times tighter
     /// than the ball around `center`.
+    #[inline(never)]
     fn cap(&self, center: P3, rho: f32, (c, r, delta): (P3, f32, f32)) -> Option<(f32, f32)> {
         let v = minus(center, c);
         let dl = length(v);
@@ -175,7 +184,7 @@ impl Screen {
             [0.0; 3]
         };
         let across = if tau > 0.0 {
-            libm::sqrtf(outer * outer - tau * tau)
+            root(outer * outer - tau * tau)
         } else {
             outer
         };
@@ -184,7 +193,7 @@ impl Screen {
         let range = |axis: P3| {
             let (base, along) = (dot(q, axis), dot(n, axis));
             let (a, b) = (tau * along, outer * along);
-            let wide = across * libm::sqrtf((1.0 - along * along).max(0.0));
+            let wide = across * root((1.0 - along * along).max(0.0));
             (base + a.min(b) - wide, base + a.max(b) + wide)
         };
         let [z, y] = self.axes.map(range);
@@ -202,50 +211,40 @@ impl Screen {
 /// The intervals of `s` (at most two) where `volume` can reach the surface of a receiver at
 /// `center` of radius `r`, seen from `eye`, its surface widened by `delta`; empty ones have
 /// `lo > hi`.
+/// The two `s` where `|A(s) − C| = r₀ + k·s`, with `p = (A(0) − C)·dir` and `|A(0) − C|`
+/// (`s² + 2ps + |A(0) − C|² = (r₀ + k·s)²`, `k² < 1`): `None` where there are none, a
+/// discriminant within rounding below 0 taken as 0 (the axis touching the sphere).
+fn crossings((p, wl): (f32, f32), k: f32, r0: f32) -> Option<(f32, f32)> {
+    let a = 1.0 - k * k;
+    let b = p - r0 * k;
+    let c = (wl - r0) * (wl + r0);
+    let disc = b * b - a * c;
+    if disc < -(b * b + (a * c).abs()) / 4096.0 {
+        return None;
+    }
+    let root = root(disc.max(0.0));
+    Some(((-b - root) / a, (-b + root) / a))
+}
+
+#[inline(never)]
 fn intervals(volume: &Volume, (center, r, delta): (P3, f32, f32), eye: P3) -> [(f32, f32); 2] {
     const EMPTY: [(f32, f32); 2] = [(1.0, 0.0); 2];
     let w = minus(volume.origin, center);
     let (p, wl, k) = (dot(w, volume.dir), length(w), volume.slope);
     let margin = (p.abs() + wl + r) / 2048.0 + 64.0;
-    let a = 1.0 - k * k;
-    // |A(s) − C|² = s² + 2ps + |w|² against (R₀ + k·s)²: a quadratic with roots at s.
-    let roots = |r0: f32| {
-        let b = p - r0 * k;
-        let c = (wl - r0) * (wl + r0);
-        let disc = b * b - a * c;
-        (disc >= 0.0).then(|| {
-            let root = libm::sqrtf(disc);
-            ((-b - root) / a, (-b + root) / a)
-        })
-    };
     let outer = r + delta + volume.base;
-    let Some((o0, o1)) = roots(outer).or_else(|| {
-        // Within rounding of touching: keep the axis's nearest approach.
-        let b = p - outer * k;
-        let c = (wl - outer) * (wl + outer);
-        (b * b - a * c >= -(b * b + (a * c).abs()) / 4096.0).then_some((-b / a, -b / a))
-    }) else {
+    let Some((o0, o1)) = crossings((p, wl), k, outer) else {
         return EMPTY;
     };
     let (lo, hi) = ((o0 - margin).max(volume.s_min - margin), o1 + margin);
     // Where the whole cross-section is inside the receiver's shell: no surface there.
     let inner = r - delta - volume.base;
+    // Where `inner − k·s ≤ 0` nothing is excluded: the roots of (inner − k·s)² = |A − C|².
     let hole = if inner > 0.0 {
-        // Where `inner − k·s ≤ 0` nothing is excluded: the roots of (inner − k·s)² = |A − C|²
-        // with the line's sign.
-        let b = p + inner * k;
-        let c = (wl - inner) * (wl + inner);
-        let disc = b * b - a * c;
-        if disc > 0.0 {
-            let root = libm::sqrtf(disc);
-            let mut i1 = (-b + root) / a - margin;
-            if k > 0.0 {
-                i1 = i1.min(inner / k - margin);
-            }
-            Some(((-b - root) / a + margin, i1))
-        } else {
-            None
-        }
+        crossings((p, wl), -k, inner).map(|(i0, i1)| {
+            let i1 = if k > 0.0 { i1.min(inner / k) } else { i1 };
+            (i0 + margin, i1 - margin)
+        })
     } else {
         None
     };
