@@ -719,7 +719,19 @@ pub fn terms_with<T: Pow>(
     };
     #[cfg(not(feature = "models"))]
     let diffuse = diffuse_cos;
-    let (f, diffuse_scale) = fresnel(p, masks, present, to_light, view);
+    let one = T::splat(1.0);
+    let (f, diffuse_scale) = if present.schlick {
+        let w = schlick_weight(half_angle_cosine(to_light, view));
+        let w = T::select(masks.schlick, w, zero);
+        let f = Vec3::new(
+            p.f0.x + (one - p.f0.x) * w,
+            p.f0.y + (one - p.f0.y) * w,
+            p.f0.z + (one - p.f0.z) * w,
+        );
+        (f, one - p.diffuse_loss * f.x)
+    } else {
+        (p.f0, one)
+    };
     let sum = sum * n_dot_l;
     Terms {
         diffuse: T::select(masks.normalized, diffuse * diffuse_scale, classic.diffuse),
@@ -763,33 +775,6 @@ fn lobe_sum<T: Pow>(
         sum = T::select(masks.ggx, p.weight[0] * g, sum);
     }
     sum
-}
-
-/// The normalized models' Fresnel factor in [`terms_with`], per channel, and the diffuse
-/// term's scale: in the lanes of Schlick's factor `F = F₀ + (1 − F₀)·(1 − L·H)⁵` and
-/// `1 − diffuse_loss·F` (`F`'s first channel; `diffuse_loss` is 1 for a dielectric with
-/// `ior`, else 0), elsewhere `F₀` and 1.
-#[inline(always)]
-fn fresnel<T: Pow>(
-    p: &Params<T>,
-    masks: &Masks<T>,
-    present: Present,
-    to_light: Vec3<T>,
-    view: Vec3<T>,
-) -> (Vec3<T>, T) {
-    let (zero, one) = (T::splat(0.0), T::splat(1.0));
-    if present.schlick {
-        let w = schlick_weight(half_angle_cosine(to_light, view));
-        let w = T::select(masks.schlick, w, zero);
-        let f = Vec3::new(
-            p.f0.x + (one - p.f0.x) * w,
-            p.f0.y + (one - p.f0.y) * w,
-            p.f0.z + (one - p.f0.z) * w,
-        );
-        (f, one - p.diffuse_loss * f.x)
-    } else {
-        (p.f0, one)
-    }
 }
 
 /// The BRDF `f(ω_i, ω_o)` itself, per channel: `terms` with everything present, combined
