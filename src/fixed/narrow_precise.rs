@@ -196,24 +196,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 (nl, ld, arriving(*power, geometry.inv))
             }
             FixedLight::Distant { arriving, .. } => {
-                // The fast path's shadow rules, on the precise `N·L`.
-                let nl15 = (nq >> 15) as i32;
-                if nl15 < 0 && (nl15 * nl15) as u32 > ns.shadow_limit {
+                let at = (light_index, light);
+                if self.precise_distant_shadowed(surface, (sphere, ns), at, d, (nq >> 15) as i32) {
                     return None;
-                }
-                if light.casters != 0 && nl15 < light.ahead && (nl15 * nl15) as u32 <= light.reach {
-                    let blocked = || {
-                        let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
-                        self.narrow_blocked(surface.index, n, light_index, light.casters)
-                    };
-                    #[cfg(test)]
-                    assert!(
-                        surface.shadows || !blocked(),
-                        "a caster blocks a ray outside the sphere's shadow rows"
-                    );
-                    if surface.shadows && blocked() {
-                        return None;
-                    }
                 }
                 (nq, qd, arriving.map(|c| c.to_bits()))
             }
@@ -236,6 +221,36 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             _ => 0,
         };
         Some((diffuse, each3(|c| scale_q16(arriving[c], lobe))))
+    }
+
+    /// Whether a distant light is shadowed at a pixel of `precise_light`, from its precise
+    /// `N·L` (Q15): the fast path's rules (the sphere's own shadow, then the casters its filter
+    /// lets through, from the normal, where the pixel lies in the sphere's shadow rows).
+    #[inline(always)]
+    fn precise_distant_shadowed(
+        &self,
+        surface: &Surface,
+        (sphere, ns): (&FixedSphere, &NarrowSphere),
+        (light_index, light): (usize, &NarrowLight),
+        d: V3<i32>,
+        nl15: i32,
+    ) -> bool {
+        if nl15 < 0 && (nl15 * nl15) as u32 > ns.shadow_limit {
+            return true;
+        }
+        if light.casters == 0 || nl15 >= light.ahead || (nl15 * nl15) as u32 > light.reach {
+            return false;
+        }
+        let blocked = || {
+            let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
+            self.narrow_blocked(surface.index, n, light_index, light.casters)
+        };
+        #[cfg(test)]
+        assert!(
+            surface.shadows || !blocked(),
+            "a caster blocks a ray outside the sphere's shadow rows"
+        );
+        surface.shadows && blocked()
     }
 
     /// Whether one of `casters` blocks the shadow ray toward point light `light_index` from
