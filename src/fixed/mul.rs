@@ -50,31 +50,13 @@ fn search_leading_zeros(x: u64) -> u32 {
     n + search_leading_zeros32(v)
 }
 
-/// The leading zeros of a nonzero `u32` by a five-step binary search (ARMv6-M has no `CLZ`).
+/// The leading zeros of a nonzero `u32` by a five-step binary search (ARMv6-M has no `CLZ`):
+/// [`search_pairs`], then the odd one.
 #[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
-    let (mut v, mut n) = (x, 0);
-    if v >> 16 == 0 {
-        n += 16;
-        v <<= 16;
-    }
-    if v >> 24 == 0 {
-        n += 8;
-        v <<= 8;
-    }
-    if v >> 28 == 0 {
-        n += 4;
-        v <<= 4;
-    }
-    if v >> 30 == 0 {
-        n += 2;
-        v <<= 2;
-    }
-    if v >> 31 == 0 {
-        n += 1;
-    }
-    n
+    let (v, n) = search_pairs(x);
+    n + (v >> 31 == 0) as u32
 }
 
 /// Whether `x << s` (`s < 64`) loses bits. Where the core has `CLZ`, from the leading-zero
@@ -110,6 +92,14 @@ pub(crate) fn shift_overflows32(x: u32, s: u32) -> bool {
 #[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn search_even_leading_zeros32(x: u32) -> u32 {
+    search_pairs(x).1
+}
+
+/// The four steps of the searches above: `x` shifted left by its leading zeros rounded down
+/// to even (its top two bits not both 0), and that count.
+#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[inline(always)]
+fn search_pairs(x: u32) -> (u32, u32) {
     let (mut v, mut n) = (x, 0);
     if v >> 16 == 0 {
         n += 16;
@@ -125,8 +115,9 @@ pub(crate) fn search_even_leading_zeros32(x: u32) -> u32 {
     }
     if v >> 30 == 0 {
         n += 2;
+        v <<= 2;
     }
-    n
+    (v, n)
 }
 
 /// The leading zeros of a nonzero `u32`: `CLZ` where the core has it, the binary search on

@@ -524,8 +524,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
     /// `N·V`; `None` for the background. Each active track's `E′` moves one pixel right
     /// where the loop reads it. Where two or more tracks hit, their `t` are compared, the
-    /// first hit winning a tie; a lone hit needs no `t` (about half the pixels of
-    /// overlapping spans, such as a sphere's corners over a floor).
+    /// first hit winning a tie; a lone hit needs no `t` (such as a sphere's span
+    /// corners over a floor).
     /// Out of line (only where spans overlap), except on ARMv6-M: there, inlined into the
     /// pixel loop, the loop is both smaller and faster; on the M4F and RV32 inlining costs
     /// instructions (`docs/performance.md, "Choices measured"`).
