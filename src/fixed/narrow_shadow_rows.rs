@@ -283,7 +283,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// once per sphere.
     #[inline(never)]
     pub(super) fn shadow_rows(&self, i: usize, view: &NarrowView) -> (u16, u16) {
-        // The frame's height is at most `MAX_DIMENSION` (65,535).
+        // The frame's height is at most `MAX_DIMENSION`, which fits 16 bits.
         let whole = (0, self.height as u16);
         let (Some(own), Some(lights)) = (self.spheres.get(i), self.narrow_lights.get(i)) else {
             return whole;
