@@ -23,7 +23,9 @@
 //! ARMv6-M has no `CLZ` either: `leading_zeros` is a call to `__clzsi2` (twice for a `u64`).
 //! [`leading_zeros`] is a five-step binary search there (in its shared routine; the narrow
 //! kernel inlines the 32-bit search), `u64::leading_zeros` elsewhere;
-//! `tests::leading_zeros_match` checks the two agree.
+//! `tests::leading_zeros_match` checks the two agree. The narrow kernel's 32-bit counts
+//! search on every core without `CLZ` (`shadeline_no_clz`, set by `build.rs`: ARMv6-M and
+//! RISC-V without `Zbb`, where the count is a routine call too).
 
 /// The number of leading zero bits of `x` (64 for 0).
 #[inline(always)]
@@ -50,9 +52,9 @@ fn search_leading_zeros(x: u64) -> u32 {
     n + search_leading_zeros32(v)
 }
 
-/// The leading zeros of a nonzero `u32` by a five-step binary search (ARMv6-M has no `CLZ`):
-/// [`search_pairs`], then the odd one.
-#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+/// The leading zeros of a nonzero `u32` by a five-step binary search (for cores without
+/// `CLZ`, `shadeline_no_clz`): [`search_pairs`], then the odd one.
+#[cfg_attr(not(shadeline_no_clz), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
     let (v, n) = search_pairs(x);
@@ -60,15 +62,16 @@ pub(crate) fn search_leading_zeros32(x: u32) -> u32 {
 }
 
 /// Whether `x << s` (`s < 64`) loses bits. Where the core has `CLZ`, from the leading-zero
-/// count (one or two `CLZ`; the 64-bit shift takes more); on ARMv6-M and RV32IMAC, which
-/// count by a search or a routine call, one comparison with `u64::MAX >> s`.
+/// count (one or two `CLZ`; the 64-bit shift takes more); on cores without it
+/// (`shadeline_no_clz`: ARMv6-M, RISC-V without `Zbb`), where the count is a search or a
+/// routine call, one comparison with `u64::MAX >> s`.
 #[inline(always)]
 pub(crate) fn shift_overflows(x: u64, s: u32) -> bool {
-    #[cfg(any(shadeline_short_mul, target_arch = "riscv32"))]
+    #[cfg(shadeline_no_clz)]
     {
         x > u64::MAX >> s
     }
-    #[cfg(not(any(shadeline_short_mul, target_arch = "riscv32")))]
+    #[cfg(not(shadeline_no_clz))]
     {
         x.leading_zeros() < s
     }
@@ -77,11 +80,11 @@ pub(crate) fn shift_overflows(x: u64, s: u32) -> bool {
 /// Whether `x << s` (`s < 32`) loses bits: [`shift_overflows`] for a `u32`.
 #[inline(always)]
 pub(crate) fn shift_overflows32(x: u32, s: u32) -> bool {
-    #[cfg(any(shadeline_short_mul, target_arch = "riscv32"))]
+    #[cfg(shadeline_no_clz)]
     {
         x > u32::MAX >> s
     }
-    #[cfg(not(any(shadeline_short_mul, target_arch = "riscv32")))]
+    #[cfg(not(shadeline_no_clz))]
     {
         x.leading_zeros() < s
     }
@@ -89,7 +92,7 @@ pub(crate) fn shift_overflows32(x: u32, s: u32) -> bool {
 
 /// The leading zeros of a nonzero `u32` rounded down to even, by a four-step binary search:
 /// [`search_leading_zeros32`] without its last step, which only adds the odd one.
-#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[cfg_attr(not(shadeline_no_clz), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn search_even_leading_zeros32(x: u32) -> u32 {
     search_pairs(x).1
@@ -97,7 +100,7 @@ pub(crate) fn search_even_leading_zeros32(x: u32) -> u32 {
 
 /// The four steps of the searches above: `x` shifted left by its leading zeros rounded down
 /// to even (its top two bits not both 0), and that count.
-#[cfg_attr(not(shadeline_short_mul), allow(dead_code))]
+#[cfg_attr(not(shadeline_no_clz), allow(dead_code))]
 #[inline(always)]
 fn search_pairs(x: u32) -> (u32, u32) {
     let (mut v, mut n) = (x, 0);
@@ -120,15 +123,15 @@ fn search_pairs(x: u32) -> (u32, u32) {
     (v, n)
 }
 
-/// The leading zeros of a nonzero `u32`: `CLZ` where the core has it, the binary search on
-/// ARMv6-M (where `u32::leading_zeros` is a routine call).
+/// The leading zeros of a nonzero `u32`: `CLZ` where the core has it, the binary search where
+/// `u32::leading_zeros` is a routine call (`shadeline_no_clz`).
 #[inline(always)]
 pub(crate) fn leading_zeros32(x: u32) -> u32 {
-    #[cfg(shadeline_short_mul)]
+    #[cfg(shadeline_no_clz)]
     {
         search_leading_zeros32(x)
     }
-    #[cfg(not(shadeline_short_mul))]
+    #[cfg(not(shadeline_no_clz))]
     {
         x.leading_zeros()
     }

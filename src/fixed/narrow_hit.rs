@@ -71,7 +71,7 @@ pub(super) fn shift_u32(v: u32, e: i32) -> u32 {
 /// The number of bits of `v` (0 for 0).
 #[inline(always)]
 pub(super) fn bit_length(v: u32) -> u32 {
-    #[cfg(shadeline_short_mul)]
+    #[cfg(shadeline_no_clz)]
     {
         if v == 0 {
             0
@@ -79,7 +79,7 @@ pub(super) fn bit_length(v: u32) -> u32 {
             32 - super::mul::search_leading_zeros32(v)
         }
     }
-    #[cfg(not(shadeline_short_mul))]
+    #[cfg(not(shadeline_no_clz))]
     {
         32 - v.leading_zeros()
     }

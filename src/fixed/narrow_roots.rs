@@ -118,15 +118,15 @@ pub(super) fn sqrt_q30(x: u32) -> i32 {
 }
 
 /// The number of leading zeros of `x > 0`, rounded down to even: the shift that brings `x`
-/// into `[2³⁰, 2³²)` by a power of four. `CLZ` where the core has it; on ARMv6-M, which
-/// has not, the binary search of [`super::mul`].
+/// into `[2³⁰, 2³²)` by a power of four. `CLZ` where the core has it; where it has not
+/// (`shadeline_no_clz`), the binary search of [`super::mul`].
 #[inline(always)]
 pub(super) fn even_leading_zeros(x: u32) -> u32 {
-    #[cfg(shadeline_short_mul)]
+    #[cfg(shadeline_no_clz)]
     {
         super::mul::search_even_leading_zeros32(x)
     }
-    #[cfg(not(shadeline_short_mul))]
+    #[cfg(not(shadeline_no_clz))]
     {
         x.leading_zeros().min(30) & !1
     }
