@@ -675,8 +675,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let Surface {
             index, nv, sigma, ..
         } = *surface;
-        let mut blocked = nl < 0 && (nl * nl) as u32 > ns.shadow_limit;
-        if !blocked && light.casters != 0 && nl < light.ahead && (nl * nl) as u32 <= light.reach {
+        let mut blocked = ns.self_shadowed(nl);
+        if !blocked && light.casters_may_block(nl) {
             let got = if !surface.shadows {
                 Casters::Left(0)
             } else if DISTANCE_TEST {

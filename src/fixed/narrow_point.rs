@@ -174,7 +174,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return PointSeen::Precise;
         }
         let (nl, ld) = (fast.nl, fast.ld);
-        if nl < 0 && (nl * nl) as u32 > ns.shadow_limit {
+        if ns.self_shadowed(nl) {
             return PointSeen::Blocked;
         }
         let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);

@@ -235,10 +235,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         d: V3<i32>,
         nl15: i32,
     ) -> bool {
-        if nl15 < 0 && (nl15 * nl15) as u32 > ns.shadow_limit {
+        if ns.self_shadowed(nl15) {
             return true;
         }
-        if light.casters == 0 || nl15 >= light.ahead || (nl15 * nl15) as u32 > light.reach {
+        if !light.casters_may_block(nl15) {
             return false;
         }
         let blocked = || {

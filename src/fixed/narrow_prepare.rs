@@ -625,6 +625,16 @@ fn hit_constants(oc_len2: i64, r2: i64, r: i64) -> (u32, u8, Exact) {
     )
 }
 
+/// A range of rows or columns in 16 bits: each end is at most the frame's size, which is at
+/// most `MAX_DIMENSION`.
+#[cfg(not(feature = "full-width"))]
+fn to_u16((start, end): (u32, u32)) -> (u16, u16) {
+    (
+        start.min(u16::MAX as u32) as u16,
+        end.min(u16::MAX as u32) as u16,
+    )
+}
+
 #[cfg(test)]
 mod tests {
     extern crate std;
@@ -765,14 +775,4 @@ mod tests {
         }
         assert!(checked > 1000, "{checked} cases");
     }
-}
-
-/// A range of rows or columns in 16 bits: each end is at most the frame's size, which is at
-/// most `MAX_DIMENSION`.
-#[cfg(not(feature = "full-width"))]
-fn to_u16((start, end): (u32, u32)) -> (u16, u16) {
-    (
-        start.min(u16::MAX as u32) as u16,
-        end.min(u16::MAX as u32) as u16,
-    )
 }

@@ -128,6 +128,15 @@ pub(crate) struct NarrowSphere {
     pub shadows: (u16, u16),
 }
 
+impl NarrowSphere {
+    /// Whether the sphere shadows itself at a pixel of `N·L` (Q15) `nl`: the light is behind
+    /// the surface by more than the shadow ray's lift clears (see [`Self::shadow_limit`]).
+    #[inline(always)]
+    pub(crate) fn self_shadowed(&self, nl: i32) -> bool {
+        nl < 0 && (nl * nl) as u32 > self.shadow_limit
+    }
+}
+
 /// A point light as the narrow kernel sees it from the eye: `Q = P − eye` as a unit vector
 /// (I2F30 bits) and its length (raw). The kernel's quadrics for a point light are those of a
 /// distant light along `Q/|Q|` (see module `narrow`), and the distance and direction to the
@@ -168,6 +177,15 @@ pub(crate) struct NarrowLight {
     /// For a point light, the fast point light's constants on this sphere.
     #[cfg(feature = "narrow-precise")]
     pub point: PointConstants,
+}
+
+impl NarrowLight {
+    /// Whether a pixel of `N·L` (Q15) `nl` passes the filter: the sphere has casters for the
+    /// light and one can be ahead and within reach (`ahead`, `reach`).
+    #[inline(always)]
+    pub(crate) fn casters_may_block(&self, nl: i32) -> bool {
+        self.casters != 0 && nl < self.ahead && (nl * nl) as u32 <= self.reach
+    }
 }
 
 /// A sphere's constants for a point light's fast stages (`narrow_point`,
