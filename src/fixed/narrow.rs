@@ -676,6 +676,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             index, nv, sigma, ..
         } = *surface;
         let mut blocked = ns.self_shadowed(nl);
+        #[cfg(test)]
+        if !blocked {
+            let n = self.narrow_normal(sphere, ns, d, sigma, nv);
+            self.assert_separated_clear(index, n, light_index, light);
+        }
         if !blocked && light.casters_may_block(nl) {
             let got = if !surface.shadows {
                 Casters::Left(0)

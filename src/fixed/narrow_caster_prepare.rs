@@ -1,15 +1,24 @@
 //! The narrow kernel's per-frame constants for its shadow filters ([`super::narrow_shadow`],
 //! [`super::narrow_point_shadow`]): each sphere's casters per light and the `N·L` filter
-//! that skips them ([`PreparedFixed::narrow_casters`], [`point_casters`]), the spheres it
-//! touches, and the quick caster test's basis across each distant light and its margin.
-//! Integers only, on the frame's scaled geometry, like the rest of the narrow prepare
-//! ([`super::narrow_prepare`]), which calls them.
+//! that skips them ([`PreparedFixed::narrow_casters`],
+//! [`PreparedFixed::narrow_point_casters`]), the spheres it touches, and the quick caster
+//! test's basis across each distant light and its margin. Integers only, on the frame's
+//! scaled geometry, like the rest of the narrow prepare ([`super::narrow_prepare`]), which
+//! calls them.
+//!
+//! A caster leaves a sphere's mask where the kernel could never find it blocking: too far
+//! from the rays, or on the far side of a plane from every ray the sphere's lit pixels cast
+//! ([`plane_clears`]). The second rule is for spheres resting on a floor sphere: the floor
+//! touches each of them, so distance alone keeps it among their casters, and every lit
+//! pixel would test it; from a light above the spheres' contact planes it cannot block
+//! any of those rays. The crate's tests assert, at every pixel they render, that no caster
+//! left out by the plane blocks the ray the kernel would cast.
 
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
 use super::roots::{inv_sqrt, sqrt};
-use super::vector::{each3, Unit, V3};
-use crate::scene::{Light, Scene};
+use super::vector::{each3, Len, Unit, V3};
+use crate::scene::Scene;
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The quick caster test's shift ([`Self::quick_shift`]) and each distant light's
@@ -126,7 +135,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// and the root ([`sqrt`], within `2⁻²⁹`) lowered by four units and that relative error,
     /// which also covers `|L|`'s distance from 1 (`2⁻²⁹`).
     ///
-    /// A caster touching the sphere (a sphere resting on a floor sphere) is in the mask like
+    /// A caster on the far side of the sphere from the light, which a plane keeps from every
+    /// ray the sphere's pixels cast ([`separated`]: the floor under a sphere resting on it,
+    /// lit from above), is not in the mask. Any other caster touching the sphere is, like
     /// any other; where the lifted point lies within `ε` of it and ahead of its centre along
     /// the light, the filter passes the pixel as unblocked, which the full-width kernel's
     /// ray, starting inside the caster, may not: a sliver of width `ε` at the contact.
@@ -172,7 +183,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             } else {
                 len2 >= mul_ii(near as i32, near as i32)
             };
-            if far {
+            if far || separated((r, rk, eps), len2, along) {
                 continue;
             }
             mask |= 1 << k;
@@ -198,22 +209,165 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     }
 }
 
-/// The casters of sphere `i` for the point light `light` (as [`NarrowLight`] holds them):
-/// [`Scene::shadow_casters`]' mask, the same spheres the full-width kernel tests, and a
-/// filter that passes every pixel (`N·L` alone does not bound a ray toward a point). `None`
-/// if the frame has spheres beyond the mask's 32 bits.
-pub(super) fn point_casters<const S: usize, const L: usize>(
-    scene: &Scene<S, L>,
-    i: usize,
-    light: &Light,
-) -> Option<(u32, i32, u32)> {
-    if scene.spheres().len() > 32 {
-        return None;
+impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// The casters of sphere `i` for the point light `light` (its index; as [`NarrowLight`]
+    /// holds them): [`Scene::shadow_casters`]' mask, the same spheres the full-width kernel
+    /// tests, less those a plane keeps off every ray toward the light ([`point_separated`]),
+    /// and a filter that passes every pixel (`N·L` alone does not bound a ray toward a
+    /// point). `None` if the frame has spheres beyond the mask's 32 bits.
+    pub(super) fn narrow_point_casters(
+        &self,
+        scene: &Scene<S, L>,
+        i: usize,
+        light: usize,
+    ) -> Option<(u32, i32, u32)> {
+        if scene.spheres().len() > 32 {
+            return None;
+        }
+        let mask = scene
+            .lights()
+            .get(light)
+            .map_or(0, |l| scene.shadow_casters(i, l))
+            & !self.point_separated_casters(i, light);
+        Some(match mask {
+            0 => (0, i32::MIN, 0),
+            mask => (mask, i32::MAX, u32::MAX),
+        })
     }
-    Some(match scene.shadow_casters(i, light) {
-        0 => (0, i32::MIN, 0),
-        mask => (mask, i32::MAX, u32::MAX),
-    })
+
+    /// The spheres [`point_separated`] from sphere `i` for point light `light` (bit `k` for
+    /// sphere `k`, the first 32; none for a distant light).
+    pub(super) fn point_separated_casters(&self, i: usize, light: usize) -> u32 {
+        let (Some(own), Some(FixedLight::Point { position, .. })) =
+            (self.spheres.get(i), self.lights.get(light))
+        else {
+            return 0;
+        };
+        let eps = self.epsilon.to_bits() as i64;
+        let raw = |c: Len| c.to_bits() as i64;
+        let q = each3(|j| raw(position[j]) - raw(own.center[j]));
+        let mut mask = 0;
+        for (k, c) in self.spheres.iter().enumerate().take(32) {
+            let d = each3(|j| raw(own.center[j]) - raw(c.center[j]));
+            if k != i && point_separated((raw(own.radius), raw(c.radius), eps), d, q) {
+                mask |= 1 << k;
+            }
+        }
+        mask
+    }
+
+    /// Under test, the spheres [`separated`] from sphere `i` for the distant light
+    /// `to_light` (I2F30 bits): those `narrow_casters` leaves out for it, near or far.
+    #[cfg(test)]
+    pub(super) fn separated_casters(&self, i: usize, to_light: [i32; 3]) -> u32 {
+        let Some(own) = self.spheres.get(i) else {
+            return 0;
+        };
+        let eps = self.epsilon.to_bits() as i64;
+        let mut mask = 0;
+        for (k, c) in self.spheres.iter().enumerate().take(32) {
+            let d = each3(|j| own.center[j].to_bits().wrapping_sub(c.center[j].to_bits()));
+            let len2 = d.iter().map(|&v| mul_ii(v, v)).sum::<i64>();
+            let along = (0..3).map(|j| mul_ii(d[j], to_light[j])).sum::<i64>();
+            let radii = (own.radius.to_bits() as i64, c.radius.to_bits() as i64, eps);
+            if k != i && separated(radii, len2, along) {
+                mask |= 1 << k;
+            }
+        }
+        mask
+    }
+}
+
+/// Whether a caster of radius `rk` (raw) lies beyond a plane that every shadow ray toward a
+/// distant light from the pixels of a sphere of radius `r` keeps off: `len2` is `|Δ|²` and
+/// `along` is `Δ·L·2³⁰` (raw), with `Δ` the sphere's centre less the caster's and `L` the
+/// unit vector toward the light. [`plane_clears`] with `δ = Δ·L/|Δ|` and the fast `N·L`'s
+/// error (`2⁻¹²`) widened to `2⁻¹⁰`.
+///
+/// This is what takes a floor sphere out of the casters of a sphere resting on it under a
+/// light from above, which otherwise meets the caster tests of every lit pixel.
+fn separated(radii: (i64, i64, i64), len2: i64, along: i64) -> bool {
+    if along <= 0 || len2 <= 0 {
+        return false;
+    }
+    // The `max`es only show the compiler that no divisor is 0.
+    let len_up = (sqrt(len2 as u64) + 2).max(1);
+    plane_clears(radii, len2, (along as u64 / len_up).min(1 << 30), 1 << 20)
+}
+
+/// [`separated`] for a point light at `q = P − C` (raw) from the sphere's centre, `d` being
+/// `Δ`: `δ` is the least `n·L` over the lifted sphere's points, `cos(γ + β)` with `γ` the
+/// angle between `Δ` and `q` and `sin β = (r + ε)/|q|`, and the fast point light's `N·L`
+/// error (within `2⁻⁹` where it serves, see `point_fast`) is widened to `2⁻⁸`. Each sine
+/// is rounded up and each cosine down.
+fn point_separated(radii: (i64, i64, i64), d: [i64; 3], q: [i64; 3]) -> bool {
+    let (r, _, eps) = radii;
+    let len2 = d.iter().map(|&v| v * v).sum::<i64>();
+    let q2 = q.iter().map(|&v| v * v).sum::<i64>();
+    let dq = (0..3).map(|j| d[j] * q[j]).sum::<i64>();
+    let (len_up, q_root) = ((sqrt(len2 as u64) + 2).max(1), sqrt(q2 as u64));
+    let lift = (r + eps) as u64;
+    if dq <= 0 || q_root <= lift + 4 {
+        return false;
+    }
+    let one = 1u64 << 60;
+    let sin_b = (lift << 30) / (q_root - 2).max(1) + 1;
+    let cos_g = ((((dq as u64) / len_up) << 30) / (q_root + 2).max(1)).min(1 << 30);
+    let sin_g = sqrt(one - cos_g * cos_g) + 3;
+    let cos_b = sqrt(one.saturating_sub(sin_b * sin_b)).saturating_sub(3);
+    let delta = ((cos_g * cos_b) >> 30).saturating_sub(((sin_g * sin_b) >> 30) + 1);
+    plane_clears(radii, len2, delta.min(1 << 30), 1 << 22)
+}
+
+/// Whether the plane across `Δ` (the sphere's centre less the caster's, `|Δ|² = len2`, raw)
+/// through the caster's point nearest the sphere keeps a caster of radius `rk` off every
+/// shadow ray from the pixels of a sphere of radius `r` that test casters, given a lower
+/// bound `δ > 0` (Q30) on `n·L` (`n = Δ/|Δ|`, `L` each ray's unit direction) and the bound
+/// `widen` (Q30) of the error of the `N·L` the own-shadow test reads.
+///
+/// The caster lies on one side of the plane, and a ray moving along `L` (`n·L > 0`) from
+/// the other side only moves away from it. A pixel's lifted point `O = C + (r + ε)·N` lies
+/// on that other side by `|Δ| − r_k + (r + ε)·N·n`. The pixels that test casters are those
+/// not in their own shadow: `N·L ≥ −s` with `s = √(1 − r²/(r + ε)²)` (the shadow limit)
+/// widened by `widen`. Over those, the angle between `N` and `−n` is at least
+/// `asin δ − asin s`, so the lifted point clears the plane by at least
+/// `|Δ| − r_k − (r + ε)·cos(asin δ − asin s)`. The plane keeps the caster off where that
+/// exceeds a margin: twice how far beyond its radius the exact ray can find the caster
+/// blocked at the distance `Ω = |Δ| + r + ε` ([`beyond_radius`]), four times `Ω·2⁻¹⁴` for
+/// the light's direction (as in [`PreparedFixed::quick_margin`]), `256` raw, `ε`, and
+/// `r/2¹²` for the normal's error. Every quantity is rounded toward keeping the caster.
+fn plane_clears((r, rk, eps): (i64, i64, i64), len2: i64, delta: u64, widen: u64) -> bool {
+    // |Δ| rounded down and up (`sqrt` is within 2⁻²⁹ relative).
+    let root = sqrt(len2.max(0) as u64) as i64;
+    let (len_down, len_up) = (root - 2 - (root >> 28), root + 2 + (root >> 28));
+    // s² from the radius and ε as the shadow limit is, in `f32` (within 2⁻²³ relative),
+    // then s in Q30, widened.
+    let (rf, ef) = (r as f32, eps as f32);
+    let s2 = ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef));
+    let s2_q30 = ((s2 * (1u64 << 30) as f32) as u64 + 1).min(1 << 30);
+    let s = sqrt(s2_q30 << 30) + widen + 1;
+    if delta <= s || delta > 1 << 30 || len_down <= 0 {
+        return false;
+    }
+    // cos(asin δ − asin s) = √(1 − δ²)·√(1 − s²) + δ·s, in Q30, each term rounded up.
+    let one = 1u64 << 60;
+    let cos_a = sqrt(one - delta * delta) + 2;
+    let cos_b = sqrt(one - s * s) + 2;
+    let cos = ((cos_a * cos_b) >> 30) + ((delta * s) >> 30) + 2;
+    let lift = r + eps;
+    let reach = ((lift as u64 * cos) >> 30) as i64 + 1;
+    let clearance = len_down - rk - reach;
+    let omega = (len_up + lift) as u64;
+    let margin = 2 * (beyond_radius(omega, rk) + 1) + (omega >> 12) as i64 + 256 + eps + (r >> 12);
+    clearance > margin
+}
+
+/// How far beyond a caster's radius `rk` (raw) the exact ray can find it blocked for the
+/// rounding of `b` to a raw unit, at a distance `Ω` (raw) from its centre: the ray passes
+/// within `√(rk² + 2Ω + 1)`, which is at most `rk + (2Ω + 1)/(2·rk)` and `rk + √(2Ω + 1)`.
+fn beyond_radius(omega: u64, rk: i64) -> i64 {
+    let spread = 2 * omega + 1;
+    (sqrt(spread) as i64).min((spread / (2 * rk.max(1) as u64)) as i64 + 1)
 }
 
 /// Whether the narrow kernel takes the quick caster test (`narrow_blocked`): on ARMv6-M,
@@ -275,7 +429,7 @@ mod tests {
             state ^= state << 17;
             (lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)) as f32
         };
-        let (mut masked, mut left_out) = (0, 0);
+        let (mut masked, mut left_out, mut separated_near) = (0, 0, 0);
         for round in 0..4000 {
             let camera = Camera {
                 position: Vec3::new(0.0, 0.0, 40.0),
@@ -338,8 +492,14 @@ mod tests {
                 let filter = frame.narrow_lights[i][0];
                 let bit = filter.casters & (1 << k) != 0;
                 let radii = r + rk;
-                if dist < radii + 5.0 * eps + 1.0e-3 * radii {
-                    assert!(bit, "sphere {k} left out of {i}'s casters at {dist} raw");
+                if dist < radii + 5.0 * eps + 1.0e-3 * radii && !bit {
+                    // Only a caster a plane keeps off every ray leaves the mask this near.
+                    let clearance = plane_clearance((r, rk, eps), len, along / len);
+                    assert!(
+                        along > 0.0 && clearance.is_some_and(|c| c > 0.0),
+                        "sphere {k} left out of {i}'s casters at {dist} raw"
+                    );
+                    separated_near += 1;
                 }
                 if dist > radii * (1.0 + 1.0 / 512.0) + 5.0 * eps + 16.0 {
                     assert!(!bit, "sphere {k} among {i}'s casters at {dist} raw");
@@ -372,8 +532,102 @@ mod tests {
             }
         }
         assert!(
-            masked > 1000 && left_out > 3000,
-            "{masked} masked, {left_out} left out"
+            masked > 1000 && left_out > 3000 && separated_near > 10,
+            "{masked} masked, {left_out} left out, {separated_near} near ones separated"
+        );
+    }
+
+    /// The least distance from the plane of [`separated`] of a lifted point `(r + ε)·N`
+    /// whose `N·L` passes the own-shadow limit, in `f64` (raw units); `None` where the rule
+    /// does not apply (`δ = n·L` at or below the limit).
+    fn plane_clearance((r, rk, eps): (f64, f64, f64), len: f64, delta: f64) -> Option<f64> {
+        let s = (eps * (2.0 * r + eps)).sqrt() / (r + eps);
+        (delta > s).then(|| len - rk - (r + eps) * (delta.asin() - s.asin()).cos())
+    }
+
+    /// [`separated`] against the geometry in `f64`, over random pairs of spheres (the caster
+    /// up to 200 times the radius, a floor) and lights: wherever it leaves a caster out, no
+    /// shadow ray from a lifted point of the sphere that tests casters (`N·L` at or above
+    /// minus the own-shadow limit, widened by `2⁻¹¹`) passes within the caster's radius, at
+    /// the worst such point and at random ones; and it leaves out most pairs whose exact
+    /// clearance is a tenth of the radius or more.
+    #[test]
+    fn separated_casters_meet_no_ray() {
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut next = |lo: f64, hi: f64| {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
+        };
+        let unit = |v: [f64; 3]| {
+            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            v.map(|c| c / n)
+        };
+        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        let raw = 65536.0;
+        let (mut dropped, mut clear, mut clear_dropped) = (0, 0, 0);
+        for _ in 0..20_000 {
+            let (r, eps) = (next(0.05, 3.0) * raw, next(1.0e-4, 0.05) * raw);
+            let rk = if next(0.0, 1.0) < 0.5 {
+                next(0.05, 3.0)
+            } else {
+                next(50.0, 200.0)
+            } * raw;
+            let n = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+            let gap = next(-0.01, 0.5) * r;
+            let delta_of = (r + rk + gap).round();
+            let d = n.map(|c| (c * delta_of).round());
+            let l = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+            let l_q30 = l.map(|c| (c * (1u64 << 30) as f64).round() as i64);
+            let d_raw = d.map(|c| c as i64);
+            let along: i64 = (0..3).map(|j| d_raw[j] * l_q30[j]).sum();
+            let len2: i64 = d_raw.iter().map(|c| c * c).sum();
+            let len = (len2 as f64).sqrt();
+            let exact = plane_clearance((r, rk, eps), len, dot(d, l) / len);
+            let is_clear = dot(d, l) > 0.0 && exact.is_some_and(|c| c > 0.1 * r);
+            clear += is_clear as u32;
+            if !separated((r as i64, rk as i64, eps as i64), len2, along) {
+                continue;
+            }
+            clear_dropped += is_clear as u32;
+            dropped += 1;
+            // The worst point: on the limit, turned from L toward −n as far as it goes.
+            let s = (eps * (2.0 * r + eps)).sqrt() / (r + eps) + 1.0 / 2048.0;
+            let away = unit(each3(|j| -n[j] - dot([-n[0], -n[1], -n[2]], l) * l[j]));
+            let worst = each3(|j| -s * l[j] + (1.0 - s * s).sqrt() * away[j]);
+            let mut normals = [worst; 9];
+            for normal in normals.iter_mut().skip(1) {
+                *normal = loop {
+                    let m = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+                    if dot(m, l) >= -s {
+                        break m;
+                    }
+                };
+            }
+            for normal in normals {
+                // The sphere's centre at 0, the caster's at −Δ; the ray from O along L.
+                let v = each3(|j| -d[j] - (r + eps) * normal[j]);
+                let b = dot(v, l);
+                let closest2 = if b <= 0.0 {
+                    dot(v, v)
+                } else {
+                    dot(v, v) - b * b
+                };
+                // Beyond the exact ray's rounding too (see `beyond_radius`).
+                let omega = len + r + eps;
+                let spread = 2.0 * omega + 1.0;
+                let beyond = spread.sqrt().min(spread / (2.0 * rk)) + omega / 16384.0;
+                assert!(
+                    closest2 > (rk + beyond) * (rk + beyond),
+                    "a ray from N = {normal:?} meets the caster: r {r}, rk {rk}, ε {eps}, Δ {d:?}, L {l:?}"
+                );
+            }
+        }
+        // The clear pairs it keeps are those within its margins.
+        assert!(
+            dropped > 3000 && clear_dropped * 10 > clear * 8,
+            "{dropped} left out; {clear_dropped} of {clear} clear pairs"
         );
     }
 }

@@ -177,6 +177,20 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if ns.self_shadowed(nl) {
             return PointSeen::Blocked;
         }
+        #[cfg(test)]
+        assert!(
+            light.separated == 0
+                || !self.point_shadowed(
+                    surface,
+                    (sphere, ns),
+                    light_index,
+                    d,
+                    (g, dl),
+                    light.separated
+                ),
+            "a caster separated from sphere {} blocks its ray toward light {light_index}",
+            surface.index
+        );
         let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);
         let lobes = if h >= ns.cutoff {
             None

@@ -190,6 +190,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     surface.shadows || light.casters == 0 || !ray(light.casters),
                     "a caster blocks a ray outside the sphere's shadow rows"
                 );
+                #[cfg(test)]
+                assert!(
+                    light.separated == 0 || !ray(light.separated),
+                    "a caster separated from sphere {} blocks its ray toward light {light_index}",
+                    surface.index
+                );
                 if light.casters != 0 && surface.shadows && ray(light.casters) {
                     return None;
                 }
@@ -237,6 +243,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     ) -> bool {
         if ns.self_shadowed(nl15) {
             return true;
+        }
+        #[cfg(test)]
+        {
+            let n = self.narrow_normal(sphere, ns, d, surface.sigma, surface.nv);
+            self.assert_separated_clear(surface.index, n, light_index, light);
         }
         if !light.casters_may_block(nl15) {
             return false;

@@ -8,7 +8,6 @@
 use super::convert::to_f32;
 use super::exact::{arriving, Exact};
 use super::mul::{dot_ii, mul_128, mul_ii};
-use super::narrow_caster_prepare::point_casters;
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::prepare::{
@@ -512,7 +511,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let ld = view.dirs().map(|d| dot_ii(l, d));
         quadric((oc_l, gram, b), Form::G(&ld), g_den, &mut g).ok_or("radius")?;
         let (casters, ahead, reach) = match scene_light {
-            Some(point) => point_casters(scene, i, point).ok_or("center")?,
+            Some(_) => self.narrow_point_casters(scene, i, light).ok_or("center")?,
             None => self
                 .narrow_casters(i, l.map(Unit::from_bits))
                 .ok_or("center")?,
@@ -533,6 +532,11 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             point: super::prepare::PointConstants {
                 cone,
                 ..Default::default()
+            },
+            #[cfg(test)]
+            separated: match scene_light {
+                Some(_) => self.point_separated_casters(i, light),
+                None => self.separated_casters(i, l),
             },
         })
     }

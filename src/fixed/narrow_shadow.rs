@@ -49,6 +49,23 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         each3(|i| (cross[i] - nv * dh[i]) >> 15)
     }
 
+    /// Under test: no caster the mask leaves out for being separated from sphere `index`
+    /// ([`NarrowLight::separated`](super::prepare::NarrowLight)) blocks the ray toward
+    /// distant light `light_index` from its point of normal `n`.
+    #[cfg(test)]
+    pub(super) fn assert_separated_clear(
+        &self,
+        index: usize,
+        n: V3<i32>,
+        light_index: usize,
+        light: &super::prepare::NarrowLight,
+    ) {
+        assert!(
+            light.separated == 0 || !self.narrow_blocked(index, n, light_index, light.separated),
+            "a caster separated from sphere {index} blocks its ray toward light {light_index}"
+        );
+    }
+
     /// Whether one of the `casters` (a mask as `NarrowLight::casters` holds it) blocks
     /// the ray toward the distant light `to_light` from the point of sphere `index` with
     /// normal `n`, lifted by ε: the shadow stage's caster test, from the narrow normal.

@@ -177,6 +177,11 @@ pub(crate) struct NarrowLight {
     /// For a point light, the fast point light's constants on this sphere.
     #[cfg(feature = "narrow-precise")]
     pub point: PointConstants,
+    /// Under test, the spheres a plane keeps off every ray toward the light, which the mask
+    /// leaves out (`narrow_caster_prepare::separated`): the shadow stages assert that none
+    /// of them blocks a ray they cast.
+    #[cfg(test)]
+    pub separated: u32,
 }
 
 impl NarrowLight {
