@@ -447,6 +447,17 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             Some(track) => self.single_surface(run, track),
             None => self.narrow_surface(run),
         };
+        // On ARMv6-M the surface is matched by reference: moved into a tuple with its track,
+        // it is copied through a `memcpy` call per pixel there (the bytes after its flag).
+        // Elsewhere the move is cheaper than the reference (`docs/performance.md`).
+        #[cfg(shadeline_short_mul)]
+        let shaded = match (&surface, surface.as_ref().and_then(|s| run.tracks.get(s.track))) {
+            (Some(surface), Some(t)) => {
+                self.narrow_lights::<N, PRECISE>(surface, &t.g, (run.d, &run.dl), record_hits)
+            }
+            _ => Narrow::Done(None),
+        };
+        #[cfg(not(shadeline_short_mul))]
         let shaded = match surface.and_then(|s| Some((s, run.tracks.get(s.track)?))) {
             Some((surface, t)) => {
                 self.narrow_lights::<N, PRECISE>(&surface, &t.g, (run.d, &run.dl), record_hits)
