@@ -451,7 +451,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         // it is copied through a `memcpy` call per pixel there (the bytes after its flag).
         // Elsewhere the move is cheaper than the reference (`docs/performance.md`).
         #[cfg(shadeline_short_mul)]
-        let shaded = match (&surface, surface.as_ref().and_then(|s| run.tracks.get(s.track))) {
+        let shaded = match (
+            &surface,
+            surface.as_ref().and_then(|s| run.tracks.get(s.track)),
+        ) {
             (Some(surface), Some(t)) => {
                 self.narrow_lights::<N, PRECISE>(surface, &t.g, (run.d, &run.dl), record_hits)
             }
