@@ -2,17 +2,17 @@
 //! [`super::narrow_point_shadow`]): each sphere's casters per light and the `N·L` filter
 //! that skips them ([`PreparedFixed::narrow_casters`],
 //! [`PreparedFixed::narrow_point_casters`]), the spheres it touches, and the quick caster
-//! test's basis across each distant light and its margin. Integers only, on the frame's
-//! scaled geometry, like the rest of the narrow prepare ([`super::narrow_prepare`]), which
-//! calls them.
+//! test's basis across each distant light and its margin. Integers on the frame's scaled
+//! geometry, like the rest of the narrow prepare ([`super::narrow_prepare`]), which calls
+//! them; the plane rule below is `f32`, as the shadow rows are.
 //!
 //! A caster leaves a sphere's mask where the kernel could never find it blocking: too far
-//! from the rays, or on the far side of a plane from every ray the sphere's lit pixels cast
-//! ([`plane_clears`]). The second rule is for spheres resting on a floor sphere: the floor
-//! touches each of them, so distance alone keeps it among their casters, and every lit
-//! pixel would test it; from a light above the spheres' contact planes it cannot block
-//! any of those rays. The crate's tests assert, at every pixel they render, that no caster
-//! left out by the plane blocks the ray the kernel would cast.
+//! from the rays, or (feature `shadow-rows`) on the far side of a plane from every ray the
+//! sphere's lit pixels cast ([`plane_clears`]). The second rule is for spheres resting on a
+//! floor sphere: the floor touches each of them, so distance alone keeps it among their
+//! casters, and every lit pixel would test it; from a light above the spheres' contact
+//! planes it cannot block any of those rays. The crate's tests assert, at every pixel they
+//! render, that no caster left out by the plane blocks the ray the kernel would cast.
 
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
@@ -287,43 +287,44 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 /// This is what takes a floor sphere out of the casters of a sphere resting on it under a
 /// light from above, which otherwise meets the caster tests of every lit pixel.
 fn separated(radii: (i64, i64, i64), len2: i64, along: i64) -> bool {
-    if along <= 0 || len2 <= 0 {
+    if !PLANE_RULE || along <= 0 || len2 <= 0 {
         return false;
     }
-    // The `max`es only show the compiler that no divisor is 0.
-    let len_up = (sqrt(len2 as u64) + 2).max(1);
-    plane_clears(radii, len2, (along as u64 / len_up).min(1 << 30), 1 << 20)
+    let len = libm::sqrtf(len2 as f32);
+    let delta = along as f32 / (len * (1u64 << 30) as f32);
+    plane_clears(radii, len, delta, 1.0 / 1024.0)
 }
 
 /// [`separated`] for a point light at `q = P − C` (raw) from the sphere's centre, `d` being
 /// `Δ`: `δ` is the least `n·L` over the lifted sphere's points, `cos(γ + β)` with `γ` the
 /// angle between `Δ` and `q` and `sin β = (r + ε)/|q|`, and the fast point light's `N·L`
 /// error (within `2⁻⁹` where it serves, see `point_fast`) is widened to `2⁻⁸`. Each sine
-/// is rounded up and each cosine down.
+/// is rounded up and each cosine down, by more than the `f32` rounding of their square
+/// roots where those lose most (near 1).
 fn point_separated(radii: (i64, i64, i64), d: [i64; 3], q: [i64; 3]) -> bool {
-    let (r, _, eps) = radii;
-    let len2 = d.iter().map(|&v| v * v).sum::<i64>();
-    let q2 = q.iter().map(|&v| v * v).sum::<i64>();
-    let dq = (0..3).map(|j| d[j] * q[j]).sum::<i64>();
-    let (len_up, q_root) = ((sqrt(len2 as u64) + 2).max(1), sqrt(q2 as u64));
-    let lift = (r + eps) as u64;
-    if dq <= 0 || q_root <= lift + 4 {
+    if !PLANE_RULE {
         return false;
     }
-    let one = 1u64 << 60;
-    let sin_b = (lift << 30) / (q_root - 2).max(1) + 1;
-    let cos_g = ((((dq as u64) / len_up) << 30) / (q_root + 2).max(1)).min(1 << 30);
-    let sin_g = sqrt(one - cos_g * cos_g) + 3;
-    let cos_b = sqrt(one.saturating_sub(sin_b * sin_b)).saturating_sub(3);
-    let delta = ((cos_g * cos_b) >> 30).saturating_sub(((sin_g * sin_b) >> 30) + 1);
-    plane_clears(radii, len2, delta.min(1 << 30), 1 << 22)
+    let (r, _, eps) = radii;
+    let (d, q) = (d.map(|c| c as f32), q.map(|c| c as f32));
+    let dot = |a: [f32; 3], b: [f32; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+    let (len, q_len) = (libm::sqrtf(dot(d, d)), libm::sqrtf(dot(q, q)));
+    let lift = (r + eps) as f32;
+    if !(len > 0.0 && q_len > lift * 1.001) {
+        return false;
+    }
+    let cos_g = dot(d, q) / (len * q_len) - 1.0 / 1_048_576.0;
+    let sin_b = lift / q_len * (1.0 + 1.0 / 1_048_576.0);
+    let sin_g = libm::sqrtf((1.0 - cos_g * cos_g).max(0.0)) + 1.0 / 2048.0;
+    let cos_b = libm::sqrtf((1.0 - sin_b * sin_b).max(0.0)) - 1.0 / 2048.0;
+    plane_clears(radii, len, cos_g * cos_b - sin_g * sin_b, 1.0 / 256.0)
 }
 
-/// Whether the plane across `Δ` (the sphere's centre less the caster's, `|Δ|² = len2`, raw)
+/// Whether the plane across `Δ` (the sphere's centre less the caster's, `|Δ| = len`, raw)
 /// through the caster's point nearest the sphere keeps a caster of radius `rk` off every
 /// shadow ray from the pixels of a sphere of radius `r` that test casters, given a lower
-/// bound `δ > 0` (Q30) on `n·L` (`n = Δ/|Δ|`, `L` each ray's unit direction) and the bound
-/// `widen` (Q30) of the error of the `N·L` the own-shadow test reads.
+/// bound `δ` on `n·L` (`n = Δ/|Δ|`, `L` each ray's unit direction) and the bound `widen`
+/// of the error of the `N·L` the own-shadow test reads.
 ///
 /// The caster lies on one side of the plane, and a ray moving along `L` (`n·L > 0`) from
 /// the other side only moves away from it. A pixel's lifted point `O = C + (r + ε)·N` lies
@@ -333,42 +334,34 @@ fn point_separated(radii: (i64, i64, i64), d: [i64; 3], q: [i64; 3]) -> bool {
 /// `asin δ − asin s`, so the lifted point clears the plane by at least
 /// `|Δ| − r_k − (r + ε)·cos(asin δ − asin s)`. The plane keeps the caster off where that
 /// exceeds a margin: twice how far beyond its radius the exact ray can find the caster
-/// blocked at the distance `Ω = |Δ| + r + ε` ([`beyond_radius`]), four times `Ω·2⁻¹⁴` for
-/// the light's direction (as in [`PreparedFixed::quick_margin`]), `256` raw, `ε`, and
-/// `r/2¹²` for the normal's error. Every quantity is rounded toward keeping the caster.
-fn plane_clears((r, rk, eps): (i64, i64, i64), len2: i64, delta: u64, widen: u64) -> bool {
-    // |Δ| rounded down and up (`sqrt` is within 2⁻²⁹ relative).
-    let root = sqrt(len2.max(0) as u64) as i64;
-    let (len_down, len_up) = (root - 2 - (root >> 28), root + 2 + (root >> 28));
-    // s² from the radius and ε as the shadow limit is, in `f32` (within 2⁻²³ relative),
-    // then s in Q30, widened.
-    let (rf, ef) = (r as f32, eps as f32);
-    let s2 = ef * (2.0 * rf + ef) / ((rf + ef) * (rf + ef));
-    let s2_q30 = ((s2 * (1u64 << 30) as f32) as u64 + 1).min(1 << 30);
-    let s = sqrt(s2_q30 << 30) + widen + 1;
-    if delta <= s || delta > 1 << 30 || len_down <= 0 {
+/// blocked at the distance `Ω = |Δ| + r + ε` (`√(r_k² + 2Ω + 1) − r_k`, the rounding of `b`
+/// to a raw unit), four times `Ω·2⁻¹⁴` for the light's direction (as in
+/// [`PreparedFixed::quick_margin`]), `256` raw, `ε`, and `r/2¹²` for the normal's error.
+///
+/// In `f32`, as the shadow rows are (feature `shadow-rows`, which holds this rule too):
+/// `δ` is lowered by `2⁻²⁰`, the cosine raised by `2⁻¹²` and the distances given `2⁻¹⁶`,
+/// each many times the rounding of the few operations before it.
+fn plane_clears((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32) -> bool {
+    let (r, rk, eps) = (r as f32, rk as f32, eps as f32);
+    let lift = r + eps;
+    let delta = delta - 1.0 / 1_048_576.0;
+    let s = libm::sqrtf(eps * (2.0 * r + eps)) / lift + widen;
+    // Also false for a NaN.
+    if !(delta > s && delta <= 1.0 && s < 1.0) {
         return false;
     }
-    // cos(asin δ − asin s) = √(1 − δ²)·√(1 − s²) + δ·s, in Q30, each term rounded up.
-    let one = 1u64 << 60;
-    let cos_a = sqrt(one - delta * delta) + 2;
-    let cos_b = sqrt(one - s * s) + 2;
-    let cos = ((cos_a * cos_b) >> 30) + ((delta * s) >> 30) + 2;
-    let lift = r + eps;
-    let reach = ((lift as u64 * cos) >> 30) as i64 + 1;
-    let clearance = len_down - rk - reach;
-    let omega = (len_up + lift) as u64;
-    let margin = 2 * (beyond_radius(omega, rk) + 1) + (omega >> 12) as i64 + 256 + eps + (r >> 12);
-    clearance > margin
+    let cos = libm::sqrtf(1.0 - delta * delta) * libm::sqrtf(1.0 - s * s) + delta * s;
+    let omega = len + lift;
+    let spread = 2.0 * omega + 1.0;
+    let beyond = libm::sqrtf(spread).min(spread / (2.0 * rk.max(1.0)) + 1.0);
+    let margin = 2.0 * (beyond + 1.0) + omega / 4096.0 + 256.0 + eps + r / 4096.0;
+    let slack = lift / 4096.0 + len / 65536.0;
+    len - rk - lift * cos - slack > margin
 }
 
-/// How far beyond a caster's radius `rk` (raw) the exact ray can find it blocked for the
-/// rounding of `b` to a raw unit, at a distance `Ω` (raw) from its centre: the ray passes
-/// within `√(rk² + 2Ω + 1)`, which is at most `rk + (2Ω + 1)/(2·rk)` and `rk + √(2Ω + 1)`.
-fn beyond_radius(omega: u64, rk: i64) -> i64 {
-    let spread = 2 * omega + 1;
-    (sqrt(spread) as i64).min((spread / (2 * rk.max(1) as u64)) as i64 + 1)
-}
+/// Whether the casters' masks leave out what a plane keeps off ([`plane_clears`]): with
+/// the feature `shadow-rows`, whose prepare holds the floors' `f32` shadow geometry.
+const PLANE_RULE: bool = cfg!(feature = "shadow-rows");
 
 /// Whether the narrow kernel takes the quick caster test (`narrow_blocked`): on ARMv6-M,
 /// where each 32×32→64-bit product of the exact test is a call, it saves most of a floor's
