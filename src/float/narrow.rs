@@ -45,7 +45,8 @@
 //! general kernel's [`super::intersect::meets`] from `P + ε·N` with
 //! `N = ô − (b·σ + N·V)·σ·D`; a lane's own sphere shadows it iff `N·L < 0` and
 //! `(N·L)² > 1 − r²/(r + ε)²`, and a caster is tested only where the caster filter (from
-//! `N·L` alone, see the fixed path's `NarrowLight`) lets it.
+//! `N·L` alone, see the fixed path's `NarrowLight`) lets it; a caster a plane keeps off
+//! every such ray (the floor under a sphere resting on it) is not among the sphere's.
 //!
 //! # Precision
 //!
@@ -879,13 +880,20 @@ mod tests {
         }
     }
 
-    /// The caster filter only skips tests that fail: with it opened (every caster tested
-    /// at every pixel) the frames keep every bit, at every lane width.
+    /// The caster filter only skips tests that fail: with it opened (every caster of
+    /// [`Scene::shadow_casters`]' mask tested at every pixel, those the plane rule left out
+    /// too) the frames keep every bit, at every lane width. Over random frames of spheres
+    /// near each other and of spheres resting on floors.
     #[test]
     fn the_caster_filter_changes_no_pixel() {
         let (w, h) = (96u32, 72u32);
-        let mut filtered = 0usize;
-        for scene in random_scenes(0xbb67_ae85_84ca_a73b, 30) {
+        let (mut filtered, mut planes) = (0usize, 0usize);
+        let mut next = uniform(0x3c6e_f372_fe94_f82b);
+        let floors = (0..30).map(|_| crate::test_scenes::random_floor_scene::<8, 4>(&mut next));
+        for scene in random_scenes(0xbb67_ae85_84ca_a73b, 30)
+            .into_iter()
+            .chain(floors)
+        {
             let Ok(frame_scalar) = Prepared::<Scalar, 8, 4>::new(&scene, w, h) else {
                 continue;
             };
@@ -895,15 +903,18 @@ mod tests {
             let simd = Prepared::<Simd8, 8, 4>::new(&scene, w, h).unwrap();
             let mut open = frame_scalar.clone();
             let mut open_simd = simd.clone();
-            for lights in open
-                .narrow_lights
-                .iter_mut()
-                .chain(open_simd.narrow_lights.iter_mut())
-            {
-                for f in lights.iter_mut() {
+            let opened = open.narrow_lights.iter_mut().enumerate();
+            for (i, lights) in opened.chain(open_simd.narrow_lights.iter_mut().enumerate()) {
+                for (k, f) in lights.iter_mut().enumerate() {
                     if f.casters != 0 {
                         filtered += (f.ahead < 1.0 || f.reach < 1.0) as usize;
                     }
+                    let all = scene
+                        .lights()
+                        .get(k)
+                        .map_or(0, |l| scene.shadow_casters(i, l));
+                    planes += (all & !f.casters != 0) as usize;
+                    f.casters = all;
                     f.ahead = f32::INFINITY;
                     f.reach = f32::INFINITY;
                 }
@@ -926,8 +937,8 @@ mod tests {
             assert_eq!(ha, hb, "the filter changed a hit record");
         }
         assert!(
-            filtered > 10,
-            "the filter narrowed only {filtered} sphere-light pairs"
+            filtered > 10 && planes > 10,
+            "the filter narrowed only {filtered} sphere-light pairs, the plane rule {planes}"
         );
     }
 }
