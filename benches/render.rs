@@ -16,6 +16,10 @@
 //! - `frame/area-lights`: the area-lights preset at its size, under its sphere light
 //!   (`sphere-light`) and under a point light at the same place (`point-light`): the cost of
 //!   soft shadows and widened lobes, on the float paths and the fixed path (`fixed`).
+//! - `frame/matrix/<scene>`: the scene matrix (`floor`, `lamp`, `three-lights`, capacities
+//!   `MatrixScene`) at `MATRIX_SIZE`, 320×240, with spans, on the float paths and the fixed
+//!   path (`fixed`): the frames the firmware measures per covered pixel (50,132 of each
+//!   frame's pixels; the exponent series at 320×240 covers 11,840).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use shadeline::*;
@@ -158,6 +162,15 @@ fn grid(n: usize) -> Scene<32, 8> {
     scene
 }
 
+/// The scene matrix's presets and their names in the firmware's runs and the scene files.
+fn matrix() -> [(&'static str, MatrixScene); 3] {
+    [
+        ("floor", floor().unwrap()),
+        ("lamp", lamp().unwrap()),
+        ("three-lights", three_lights().unwrap()),
+    ]
+}
+
 fn benches(c: &mut Criterion) {
     let series = exponent_series().unwrap();
     for size in [(320, 240), (1024, 747)] {
@@ -244,6 +257,13 @@ fn benches(c: &mut Criterion) {
         (320, 160),
         "320x160",
     );
+    let (w, h) = MATRIX_SIZE;
+    let id = format!("{w}x{h}");
+    for (name, scene) in matrix() {
+        let group = format!("frame/matrix/{name}");
+        bench_paths(c, &group, &scene, MATRIX_SIZE, &id, (true, false));
+        bench_fixed(c, &group, &scene, MATRIX_SIZE, &id);
+    }
     for (id, radius) in [("sphere-light", AREA_LIGHT_RADIUS), ("point-light", 0.0)] {
         bench_paths(
             c,
