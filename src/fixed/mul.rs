@@ -104,13 +104,15 @@ pub(crate) fn search_even_leading_zeros32(x: u32) -> u32 {
 #[inline(always)]
 fn search_pairs(x: u32) -> (u32, u32) {
     let (mut v, mut n) = (x, 0);
-    if v >> 16 == 0 {
-        n += 16;
-        v <<= 16;
-    }
     if v >> 24 == 0 {
-        n += 8;
-        v <<= 8;
+        if v >> 16 == 0 {
+            n += 16;
+            v <<= 16;
+        }
+        if v >> 24 == 0 {
+            n += 8;
+            v <<= 8;
+        }
     }
     if v >> 28 == 0 {
         n += 4;
