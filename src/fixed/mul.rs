@@ -152,6 +152,21 @@ pub(crate) fn mul_uu(a: u32, b: u32) -> u64 {
     }
 }
 
+/// `a·b` for `b` below `2¹⁶`, exact: on ARMv6-M two `MULS` of `a`'s halves, no routine
+/// call (where the core multiplies 32×32→64 in one instruction, that instruction).
+#[inline(always)]
+pub(crate) fn mul_u32_u16(a: u32, b: u32) -> u64 {
+    debug_assert!(b < 1 << 16, "{b:#x} is not a 16-bit factor");
+    #[cfg(shadeline_short_mul)]
+    {
+        ((((a >> 16) * b) as u64) << 16) + ((a & 0xffff) * b) as u64
+    }
+    #[cfg(not(shadeline_short_mul))]
+    {
+        a as u64 * b as u64
+    }
+}
+
 /// `a·b`, exact.
 #[inline(always)]
 pub(crate) fn mul_ii(a: i32, b: i32) -> i64 {
@@ -340,6 +355,12 @@ mod tests {
 
     #[test]
     fn split_products_are_exact() {
+        for a in numbers() {
+            for b in numbers().step_by(31) {
+                let b = b >> (16 + b % 16);
+                assert_eq!(mul_u32_u16(a, b), a as u64 * b as u64, "{a:#x}·{b:#x}");
+            }
+        }
         for a in numbers() {
             for b in numbers().step_by(7) {
                 assert_eq!(split_uu(a, b), a as u64 * b as u64, "{a} × {b}");

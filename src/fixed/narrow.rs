@@ -126,7 +126,7 @@
 //! 16×16→32 bits (`|x| ≤ 2¹⁶` operands) except in the row's set-up, the precise lobe, the
 //! normal for caster tests and the per-channel scaling by the light's colour.
 
-use super::mul::{dot_ii, mul_uu};
+use super::mul::{dot_ii, mul_u32_u16};
 use super::narrow_hit::fast_t;
 use super::narrow_lobe::{fast_h, fast_lobe, precise_lobe};
 use super::narrow_roots::{sigma_of, sqrt_q30};
@@ -757,9 +757,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         let sphere = self.spheres.get(hit.index);
         let radius = sphere.map_or(0, |s| s.radius.to_bits() as u32);
         let b = sphere.map_or(0, |s| dot_ii(s.eye_offset.map(|c| c.to_bits()), d));
-        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits.
-        let along = (mul_uu(((-b) >> 30) as u32, hit.sigma as u32) >> 14) as i64;
-        along - (mul_uu(radius, hit.nv as u32) >> 15) as i64
+        // −b·σ/2⁴⁴ (1/|D| is σ/2⁴⁴): on a hit −2⁶¹ < b < 0, so (−b) >> 30 fits 31 bits; σ
+        // and N·V (Q15) fit 16 bits.
+        let along = (mul_u32_u16(((-b) >> 30) as u32, hit.sigma as u32) >> 14) as i64;
+        along - (mul_u32_u16(radius, hit.nv as u32) >> 15) as i64
     }
 }
 
