@@ -9,14 +9,19 @@ use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
 use crate::vec3::Vec3;
 use crate::LinearRgb;
 
+/// One xorshift step of `state`, returned.
+fn xorshift(state: &mut u64) -> u64 {
+    *state ^= *state << 13;
+    *state ^= *state >> 7;
+    *state ^= *state << 17;
+    *state
+}
+
 /// A xorshift generator of uniform `f32`s in `[lo, hi)`, from `seed`.
 pub(crate) fn uniform(seed: u64) -> impl FnMut(f32, f32) -> f32 {
     let mut state = seed;
     move |lo: f32, hi: f32| {
-        state ^= state << 13;
-        state ^= state >> 7;
-        state ^= state << 17;
-        lo + (hi - lo) * ((state >> 40) as f32 / (1u64 << 24) as f32)
+        lo + (hi - lo) * ((xorshift(&mut state) >> 40) as f32 / (1u64 << 24) as f32)
     }
 }
 
@@ -218,4 +223,116 @@ fn random_floor<const S: usize, const L: usize>(
             .unwrap();
     }
     scene
+}
+
+/// A pair of spheres and a distant light for the tests of the plane rule that leaves a
+/// caster out of a sphere's mask (`src/fixed/narrow_caster_prepare.rs`,
+/// `src/float/prepare.rs`), in `f64`: the sphere's radius `r`, the caster's `rc`, the lift
+/// `eps`, `d = Δ` (the sphere's centre less the caster's) and the unit `l` toward the light.
+pub(crate) struct PlanePair {
+    pub r: f64,
+    pub rc: f64,
+    pub eps: f64,
+    pub d: [f64; 3],
+    pub l: [f64; 3],
+}
+
+fn dot64(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+fn unit64(v: [f64; 3]) -> [f64; 3] {
+    let n = dot64(v, v).sqrt();
+    v.map(|c| c / n)
+}
+
+/// A xorshift generator of uniform `f64`s in `[lo, hi)`, from `seed`.
+pub(crate) fn uniform64(seed: u64) -> impl FnMut(f64, f64) -> f64 {
+    let mut state = seed;
+    move |lo: f64, hi: f64| {
+        lo + (hi - lo) * ((xorshift(&mut state) >> 11) as f64 / (1u64 << 53) as f64)
+    }
+}
+
+impl PlanePair {
+    /// A random pair in units of `unit`: `r` from 0.05 to 3, the caster that size or 50 to
+    /// 200 (a floor), `ε` from 10⁻⁴ to 0.05, their surfaces from 1% of `r` into each other
+    /// to half `r` apart along a random direction (`d` in whole raw units where `unit` is
+    /// above 1), and a random light.
+    pub(crate) fn random(next: &mut impl FnMut(f64, f64) -> f64, unit: f64) -> PlanePair {
+        let (r, eps) = (next(0.05, 3.0) * unit, next(1.0e-4, 0.05) * unit);
+        let rc = if next(0.0, 1.0) < 0.5 {
+            next(0.05, 3.0)
+        } else {
+            next(50.0, 200.0)
+        } * unit;
+        // Whole raw units where `unit` is the fixed path's.
+        let round = |x: f64| if unit > 1.0 { x.round() } else { x };
+        let n = unit64([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+        let apart = round(r + rc + next(-0.01, 0.5) * r);
+        let d = n.map(|c| round(c * apart));
+        let l = unit64([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+        PlanePair { r, rc, eps, d, l }
+    }
+
+    /// `|Δ|` and `n·L`.
+    pub(crate) fn len_and_delta(&self) -> (f64, f64) {
+        let len = dot64(self.d, self.d).sqrt();
+        (len, dot64(self.d, self.l) / len)
+    }
+
+    /// The least distance from the plane of a lifted point `(r + ε)·N` whose `N·L` passes
+    /// the own-shadow limit `s = √(1 − r²/(r + ε)²)`: `|Δ| − r_c − (r + ε)·cos(asin δ −
+    /// asin s)`; `None` where `δ ≤ s`.
+    pub(crate) fn clearance(&self) -> Option<f64> {
+        let (len, delta) = self.len_and_delta();
+        let lift = self.r + self.eps;
+        let s = (self.eps * (2.0 * self.r + self.eps)).sqrt() / lift;
+        (delta > s).then(|| len - self.rc - lift * (delta.asin() - s.asin()).cos())
+    }
+
+    /// Asserts that no shadow ray along `l` from a lifted point `(r + ε)·N` of the sphere
+    /// with `N·L ≥ −s` passes within `reach` of the caster's centre: at the worst such
+    /// point (on the limit, turned from `L` toward `−n` as far as it goes) and at eight
+    /// random ones.
+    pub(crate) fn assert_no_ray_within(
+        &self,
+        next: &mut impl FnMut(f64, f64) -> f64,
+        s: f64,
+        reach: f64,
+    ) {
+        let (d, l) = (self.d, self.l);
+        let minus_n = unit64(d.map(|c| -c));
+        let away = unit64(core::array::from_fn(|j| {
+            minus_n[j] - dot64(minus_n, l) * l[j]
+        }));
+        let worst: [f64; 3] = core::array::from_fn(|j| -s * l[j] + (1.0 - s * s).sqrt() * away[j]);
+        let mut normals = [worst; 9];
+        for normal in normals.iter_mut().skip(1) {
+            *normal = loop {
+                let m = unit64([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+                if dot64(m, l) >= -s {
+                    break m;
+                }
+            };
+        }
+        for normal in normals {
+            // The sphere's centre at 0, the caster's at −Δ; the ray from O along L.
+            let v: [f64; 3] = core::array::from_fn(|j| -d[j] - (self.r + self.eps) * normal[j]);
+            let b = dot64(v, l);
+            let closest2 = if b <= 0.0 {
+                dot64(v, v)
+            } else {
+                dot64(v, v) - b * b
+            };
+            assert!(
+                closest2 > reach * reach,
+                "a ray from N = {normal:?} comes within {reach} of the caster: r {}, rc {}, \
+                 ε {}, Δ {d:?}, L {l:?}",
+                self.r,
+                self.rc,
+                self.eps
+            );
+        }
+    }
 }

@@ -487,9 +487,15 @@ mod tests {
                 let radii = r + rk;
                 if dist < radii + 5.0 * eps + 1.0e-3 * radii && !bit {
                     // Only a caster a plane keeps off every ray leaves the mask this near.
-                    let clearance = plane_clearance((r, rk, eps), len, along / len);
+                    let pair = crate::test_scenes::PlanePair {
+                        r,
+                        rc: rk,
+                        eps,
+                        d,
+                        l,
+                    };
                     assert!(
-                        along > 0.0 && clearance.is_some_and(|c| c > 0.0),
+                        along > 0.0 && pair.clearance().is_some_and(|c| c > 0.0),
                         "sphere {k} left out of {i}'s casters at {dist} raw"
                     );
                     separated_near += 1;
@@ -530,14 +536,6 @@ mod tests {
         );
     }
 
-    /// The least distance from the plane of [`separated`] of a lifted point `(r + ε)·N`
-    /// whose `N·L` passes the own-shadow limit, in `f64` (raw units); `None` where the rule
-    /// does not apply (`δ = n·L` at or below the limit).
-    fn plane_clearance((r, rk, eps): (f64, f64, f64), len: f64, delta: f64) -> Option<f64> {
-        let s = (eps * (2.0 * r + eps)).sqrt() / (r + eps);
-        (delta > s).then(|| len - rk - (r + eps) * (delta.asin() - s.asin()).cos())
-    }
-
     /// [`separated`] against the geometry in `f64`, over random pairs of spheres (the caster
     /// up to 200 times the radius, a floor) and lights: wherever it leaves a caster out, no
     /// shadow ray from a lifted point of the sphere that tests casters (`N·L` at or above
@@ -546,76 +544,29 @@ mod tests {
     /// clearance is a tenth of the radius or more.
     #[test]
     fn separated_casters_meet_no_ray() {
-        let mut state = 0x2545_f491_4f6c_dd1du64;
-        let mut next = |lo: f64, hi: f64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
-        };
-        let unit = |v: [f64; 3]| {
-            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            v.map(|c| c / n)
-        };
-        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-        let raw = 65536.0;
+        use crate::test_scenes::{uniform64, PlanePair};
+        let mut next = uniform64(0x2545_f491_4f6c_dd1d);
         let (mut dropped, mut clear, mut clear_dropped) = (0, 0, 0);
         for _ in 0..20_000 {
-            let (r, eps) = (next(0.05, 3.0) * raw, next(1.0e-4, 0.05) * raw);
-            let rk = if next(0.0, 1.0) < 0.5 {
-                next(0.05, 3.0)
-            } else {
-                next(50.0, 200.0)
-            } * raw;
-            let n = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
-            let gap = next(-0.01, 0.5) * r;
-            let delta_of = (r + rk + gap).round();
-            let d = n.map(|c| (c * delta_of).round());
-            let l = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+            let pair = PlanePair::random(&mut next, 65536.0);
+            let PlanePair { r, rc, eps, d, l } = pair;
             let l_q30 = l.map(|c| (c * (1u64 << 30) as f64).round() as i64);
             let d_raw = d.map(|c| c as i64);
             let along: i64 = (0..3).map(|j| d_raw[j] * l_q30[j]).sum();
             let len2: i64 = d_raw.iter().map(|c| c * c).sum();
-            let len = (len2 as f64).sqrt();
-            let exact = plane_clearance((r, rk, eps), len, dot(d, l) / len);
-            let is_clear = dot(d, l) > 0.0 && exact.is_some_and(|c| c > 0.1 * r);
+            let is_clear = pair.clearance().is_some_and(|c| c > 0.1 * r);
             clear += is_clear as u32;
-            if !separated((r as i64, rk as i64, eps as i64), len2, along) {
+            if !separated((r as i64, rc as i64, eps as i64), len2, along) {
                 continue;
             }
             clear_dropped += is_clear as u32;
             dropped += 1;
-            // The worst point: on the limit, turned from L toward −n as far as it goes.
             let s = (eps * (2.0 * r + eps)).sqrt() / (r + eps) + 1.0 / 2048.0;
-            let away = unit(each3(|j| -n[j] - dot([-n[0], -n[1], -n[2]], l) * l[j]));
-            let worst = each3(|j| -s * l[j] + (1.0 - s * s).sqrt() * away[j]);
-            let mut normals = [worst; 9];
-            for normal in normals.iter_mut().skip(1) {
-                *normal = loop {
-                    let m = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
-                    if dot(m, l) >= -s {
-                        break m;
-                    }
-                };
-            }
-            for normal in normals {
-                // The sphere's centre at 0, the caster's at −Δ; the ray from O along L.
-                let v = each3(|j| -d[j] - (r + eps) * normal[j]);
-                let b = dot(v, l);
-                let closest2 = if b <= 0.0 {
-                    dot(v, v)
-                } else {
-                    dot(v, v) - b * b
-                };
-                // Beyond the exact ray's rounding too (see `beyond_radius`).
-                let omega = len + r + eps;
-                let spread = 2.0 * omega + 1.0;
-                let beyond = spread.sqrt().min(spread / (2.0 * rk)) + omega / 16384.0;
-                assert!(
-                    closest2 > (rk + beyond) * (rk + beyond),
-                    "a ray from N = {normal:?} meets the caster: r {r}, rk {rk}, ε {eps}, Δ {d:?}, L {l:?}"
-                );
-            }
+            // Beyond the exact ray's rounding too (`plane_clears`' margin).
+            let omega = pair.len_and_delta().0 + r + eps;
+            let spread = 2.0 * omega + 1.0;
+            let beyond = spread.sqrt().min(spread / (2.0 * rc)) + omega / 16384.0;
+            pair.assert_no_ray_within(&mut next, s, rc + beyond);
         }
         // The clear pairs it keeps are those within its margins.
         assert!(

@@ -731,29 +731,12 @@ mod tests {
     /// and `2⁻¹⁴` of the distance, at the worst such point and at random ones.
     #[test]
     fn left_out_casters_meet_no_ray() {
-        let mut state = 0x9e37_79b9_7f4a_7c15u64;
-        let mut next = |lo: f64, hi: f64| {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            lo + (hi - lo) * ((state >> 11) as f64 / (1u64 << 53) as f64)
-        };
-        let unit = |v: [f64; 3]| {
-            let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            v.map(|c| c / n)
-        };
-        let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+        use crate::test_scenes::{uniform64, PlanePair};
+        let mut next = uniform64(0x9e37_79b9_7f4a_7c15);
         let mut left_out = 0;
         for _ in 0..20_000 {
-            let (r, eps) = (next(0.05, 3.0), next(1.0e-4, 0.05));
-            let rc = if next(0.0, 1.0) < 0.5 {
-                next(0.05, 3.0)
-            } else {
-                next(50.0, 200.0)
-            };
-            let n = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
-            let d = n.map(|c| c * (r + rc + next(-0.01, 0.5) * r));
-            let l = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
+            let pair = PlanePair::random(&mut next, 1.0);
+            let PlanePair { r, rc, eps, d, l } = pair;
             let (df, lf) = (d.map(|c| c as f32), l.map(|c| c as f32));
             let delta = Vec3::new(df[0], df[1], df[2]);
             let to_light = Vec3::new(lf[0], lf[1], lf[2]);
@@ -767,37 +750,8 @@ mod tests {
             }
             left_out += 1;
             let s = (1.0 - (r / (r + eps)).powi(2)).sqrt() + 1.0 / 2048.0;
-            let minus_n = n.map(|c| -c);
-            let away = unit(core::array::from_fn(|j| {
-                minus_n[j] - dot(minus_n, l) * l[j]
-            }));
-            let worst: [f64; 3] =
-                core::array::from_fn(|j| -s * l[j] + (1.0 - s * s).sqrt() * away[j]);
-            let mut normals = [worst; 9];
-            for normal in normals.iter_mut().skip(1) {
-                *normal = loop {
-                    let m = unit([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
-                    if dot(m, l) >= -s {
-                        break m;
-                    }
-                };
-            }
-            let len = dot(d, d).sqrt();
-            let reach = rc + (len + r + eps) / 16384.0;
-            for normal in normals {
-                // The sphere's centre at 0, the caster's at −Δ; the ray from O along L.
-                let v: [f64; 3] = core::array::from_fn(|j| -d[j] - (r + eps) * normal[j]);
-                let b = dot(v, l);
-                let closest2 = if b <= 0.0 {
-                    dot(v, v)
-                } else {
-                    dot(v, v) - b * b
-                };
-                assert!(
-                    closest2 > reach * reach,
-                    "a ray from N = {normal:?} meets the caster: r {r}, rc {rc}, ε {eps}, Δ {d:?}, L {l:?}"
-                );
-            }
+            let len = pair.len_and_delta().0;
+            pair.assert_no_ray_within(&mut next, s, rc + (len + r + eps) / 16384.0);
         }
         assert!(left_out > 3000, "only {left_out} casters left out");
     }
