@@ -178,19 +178,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             return PointSeen::Blocked;
         }
         #[cfg(test)]
-        assert!(
-            light.separated == 0
-                || !self.point_shadowed(
-                    surface,
-                    (sphere, ns),
-                    light_index,
-                    d,
-                    (g, dl),
-                    light.separated
-                ),
-            "a caster separated from sphere {} blocks its ray toward light {light_index}",
-            surface.index
-        );
+        self.assert_separated_point_clear(surface, (sphere, ns, light), light_index, d, (g, dl));
         let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);
         let lobes = if h >= ns.cutoff {
             None
@@ -233,6 +221,27 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 }
 
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
+    /// Under test: no caster the mask leaves out for being separated from the sphere of
+    /// `surface` ([`NarrowLight::separated`](super::prepare::NarrowLight)) blocks the
+    /// precise ray toward point light `light_index`.
+    #[cfg(test)]
+    fn assert_separated_point_clear(
+        &self,
+        surface: &Surface,
+        (sphere, ns, light): (&FixedSphere, &NarrowSphere, &NarrowLight),
+        light_index: usize,
+        d: V3<i32>,
+        (g, dl): (i64, i64),
+    ) {
+        let casters = light.separated;
+        assert!(
+            casters == 0
+                || !self.point_shadowed(surface, (sphere, ns), light_index, d, (g, dl), casters),
+            "a caster separated from sphere {} blocks its ray toward light {light_index}",
+            surface.index
+        );
+    }
+
     /// The `shadow` stage of the fast point light (`fast` its geometry at the hit) toward
     /// point light `light_index` at `position`: the casters' filters
     /// (`point_casters`), then the precise ray for the casters they leave. Under
