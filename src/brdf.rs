@@ -677,7 +677,23 @@ pub fn terms_with<T: Pow>(
 ) -> Terms<T> {
     let zero = T::splat(0.0);
     let n_dot_l = n.dot(to_light).max(zero);
-    let cosine = specular_cosine(n, to_light, view, masks.blinn);
+    // Lanes whose lobe 0 weighs nothing (Lambert: normalized with weight 0; classic with
+    // ks 0): where every lane is such and no other lobe is present, the lobe is only ever
+    // multiplied by 0, so it is taken as 0 without changing a bit.
+    let weight = if present.normalized {
+        T::select(masks.normalized, p.weight[0], p.ks)
+    } else {
+        p.ks
+    };
+    #[cfg(feature = "models")]
+    let other_lobes = present.more_lobes || present.ggx;
+    #[cfg(not(feature = "models"))]
+    let other_lobes = present.more_lobes;
+    let cosine = if other_lobes || T::any(zero.lt(weight)) {
+        specular_cosine(n, to_light, view, masks.blinn)
+    } else {
+        zero
+    };
     // pow_clamped is exactly 0 where the cosine is not positive, so a packet with no
     // positive lane can skip it without changing a bit.
     let positive = T::any(zero.lt(cosine));

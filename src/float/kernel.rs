@@ -304,7 +304,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             shadow_origin: p + n * W::Lane::splat(self.epsilon),
             any_hit,
             hit_spheres: hit.spheres,
-            #[cfg(feature = "area-lights")]
             id: hit.id,
         }
     }

@@ -36,8 +36,8 @@ pub(super) struct Surface<T: Lane> {
     /// The spheres some lane hit (`Hit::spheres`).
     pub hit_spheres: u32,
     /// The sphere each lane hit, as `f32` (`-1` on a miss): a sphere light's soft shadow
-    /// leaves it out (its own sphere is the horizon).
-    #[cfg(feature = "area-lights")]
+    /// leaves it out (its own sphere is the horizon), and a one-lane packet's shadow ray
+    /// toward a light it faces does not test it.
     pub id: T,
 }
 
@@ -126,11 +126,30 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             // `#[inline(always)]` function of their own, they take the general kernel more
             // instructions on the M4F (`docs/performance.md, "Choices measured"`).
             let light = incoming(light, surface.p);
-            let blocked = self.shadow(
-                surface,
-                &light,
-                self.casters_of(surface.hit_spheres, light_index),
-            );
+            // `N·L` as `terms` forms it. Where it is not positive, a normalized lane (every
+            // normalized model and Lambert carry `max(0, N·L)` in both terms) gets exactly
+            // nothing from this light, shadowed or not: a packet of only such lanes skips it
+            // unless it records the shadows.
+            let n_dot_l = surface.n.dot(light.to_light);
+            let facing_away = n_dot_l.le(zero);
+            let lit =
+                W::Lane::and_not(surface.any_hit, W::Lane::and(masks.normalized, facing_away));
+            if !record_hits && !W::Lane::any(lit) {
+                continue;
+            }
+            let mut casters = self.casters_of(surface.hit_spheres, light_index);
+            // One lane with `N·L > 0`: the ray from `P + ε·N` starts `ε` above the sphere's
+            // tangent plane at `P` and moves away from it, and the sphere lies below that
+            // plane; `meets` finds `b + ε > 0` and `(b + ε)² − disc` about `2rε`, far above
+            // its rounding. So its own sphere cannot block it, and it is not tested. (The
+            // SIMD paths test it and must agree bit for bit: `tests/paths_agree.rs`.)
+            if W::Lane::LANES == 1 && !W::Lane::any(facing_away) {
+                let own = surface.id.lane(0);
+                if (0.0..32.0).contains(&own) {
+                    casters &= !(1u32 << own as u32);
+                }
+            }
+            let blocked = self.shadow(surface, &light, casters);
             if record_hits && light_index < 32 {
                 let bits = W::Lane::bitmask(W::Lane::and(surface.any_hit, blocked));
                 for (lane, word) in shadowed.iter_mut().enumerate() {
