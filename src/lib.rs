@@ -124,6 +124,7 @@
 #![deny(missing_docs)]
 
 pub mod brdf;
+mod caster_plane;
 pub mod damage;
 #[cfg(feature = "embedded-graphics")]
 pub mod eg;

@@ -8,11 +8,9 @@
 //!
 //! A caster leaves a sphere's mask where the kernel could never find it blocking: too far
 //! from the rays, or (feature `shadow-rows`) on the far side of a plane from every ray the
-//! sphere's lit pixels cast ([`plane_clears`]). The second rule is for spheres resting on a
-//! floor sphere: the floor touches each of them, so distance alone keeps it among their
-//! casters, and every lit pixel would test it; from a light above the spheres' contact
-//! planes it cannot block any of those rays. The crate's tests assert, at every pixel they
-//! render, that no caster left out by the plane blocks the ray the kernel would cast.
+//! sphere's lit pixels cast ([`crate::caster_plane`], with this path's margin in
+//! [`plane_clears`]). The crate's tests assert, at every pixel they render, that no caster
+//! left out by the plane blocks the ray the kernel would cast.
 
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
@@ -320,43 +318,30 @@ fn point_separated(radii: (i64, i64, i64), d: [i64; 3], q: [i64; 3]) -> bool {
     plane_clears(radii, len, cos_g * cos_b - sin_g * sin_b, 1.0 / 256.0)
 }
 
-/// Whether the plane across `Δ` (the sphere's centre less the caster's, `|Δ| = len`, raw)
-/// through the caster's point nearest the sphere keeps a caster of radius `rk` off every
+/// Whether the plane across `Δ` (`|Δ| = len`, raw) keeps a caster of radius `rk` off every
 /// shadow ray from the pixels of a sphere of radius `r` that test casters, given a lower
-/// bound `δ` on `n·L` (`n = Δ/|Δ|`, `L` each ray's unit direction) and the bound `widen`
-/// of the error of the `N·L` the own-shadow test reads.
-///
-/// The caster lies on one side of the plane, and a ray moving along `L` (`n·L > 0`) from
-/// the other side only moves away from it. A pixel's lifted point `O = C + (r + ε)·N` lies
-/// on that other side by `|Δ| − r_k + (r + ε)·N·n`. The pixels that test casters are those
-/// not in their own shadow: `N·L ≥ −s` with `s = √(1 − r²/(r + ε)²)` (the shadow limit)
-/// widened by `widen`. Over those, the angle between `N` and `−n` is at least
-/// `asin δ − asin s`, so the lifted point clears the plane by at least
-/// `|Δ| − r_k − (r + ε)·cos(asin δ − asin s)`. The plane keeps the caster off where that
-/// exceeds a margin: twice how far beyond its radius the exact ray can find the caster
-/// blocked at the distance `Ω = |Δ| + r + ε` (`√(r_k² + 2Ω + 1) − r_k`, the rounding of `b`
-/// to a raw unit), four times `Ω·2⁻¹⁴` for the light's direction (as in
-/// [`PreparedFixed::quick_margin`]), `256` raw, `ε`, and `r/2¹²` for the normal's error.
+/// bound `δ` on `n·L` and the bound `widen` of the error of the `N·L` the own-shadow test
+/// reads: [`crate::caster_plane::clearance`] above a margin of twice how far beyond its
+/// radius the exact ray can find the caster blocked at the distance `Ω = |Δ| + r + ε`
+/// (`√(r_k² + 2Ω + 1) − r_k`, the rounding of `b` to a raw unit), four times `Ω·2⁻¹⁴` for
+/// the light's direction (as in [`PreparedFixed::quick_margin`]), `256` raw, `ε`, and
+/// `r/2¹²` for the normal's error.
 ///
 /// In `f32`, as the shadow rows are (feature `shadow-rows`, which holds this rule too):
-/// `δ` is lowered by `2⁻²⁰`, the cosine raised by `2⁻¹²` and the distances given `2⁻¹⁶`,
-/// each many times the rounding of the few operations before it.
+/// `δ` is lowered by `2⁻²⁰`, and the clearance given `2⁻¹²` of the lift (the cosine's
+/// rounding near 1) and `2⁻¹⁶` of the distance, each many times the rounding of the few
+/// operations before it.
 fn plane_clears((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32) -> bool {
     let (r, rk, eps) = (r as f32, rk as f32, eps as f32);
     let lift = r + eps;
-    let delta = delta - 1.0 / 1_048_576.0;
-    let s = libm::sqrtf(eps * (2.0 * r + eps)) / lift + widen;
-    // Also false for a NaN.
-    if !(delta > s && delta <= 1.0 && s < 1.0) {
-        return false;
-    }
-    let cos = libm::sqrtf(1.0 - delta * delta) * libm::sqrtf(1.0 - s * s) + delta * s;
     let omega = len + lift;
     let spread = 2.0 * omega + 1.0;
     let beyond = libm::sqrtf(spread).min(spread / (2.0 * rk.max(1.0)) + 1.0);
     let margin = 2.0 * (beyond + 1.0) + omega / 4096.0 + 256.0 + eps + r / 4096.0;
     let slack = lift / 4096.0 + len / 65536.0;
-    len - rk - lift * cos - slack > margin
+    let delta = delta - 1.0 / 1_048_576.0;
+    crate::caster_plane::clearance((r, rk, eps), len, delta, widen)
+        .is_some_and(|c| c - slack > margin)
 }
 
 /// Whether the casters' masks leave out what a plane keeps off ([`plane_clears`]): with

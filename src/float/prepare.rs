@@ -693,31 +693,18 @@ impl Outline {
     }
 }
 
-/// Whether the plane across `Δ` (a sphere's centre less a caster's) through the caster's
-/// point nearest the sphere keeps the caster off every shadow ray toward the distant light
-/// `L` that the narrow kernel casts from the sphere's pixels: `radii` is the sphere's
-/// radius `r`, the caster's `r_c` and the lift `ε`; `widen` bounds the error of the `N·L`
-/// the own-shadow test reads.
-///
-/// The same rule as the fixed path's (`src/fixed/narrow_caster_prepare.rs`,
-/// `plane_clears`): with `n = Δ/|Δ|` and `δ = n·L > 0`, the caster lies on one side of the
-/// plane and a ray along `L` from the other side only moves away from it. A lifted point
-/// `C + (r + ε)·N` of a pixel that tests casters (`N·L ≥ −s`, `s = √(1 − r²/(r + ε)²)` the
-/// own-shadow limit, widened) lies on that other side by at least
-/// `|Δ| − r_c − (r + ε)·cos(asin δ − asin s)`; the rule asks for more than a margin of
-/// `ε` and `2⁻¹²` of the distance `|Δ| + r + ε`, thousands of times the rounding of
+/// Whether the plane across `Δ` (a sphere's centre less a caster's) keeps the caster off
+/// every shadow ray toward the distant light `L` that the narrow kernel casts from the
+/// sphere's pixels: `radii` is the sphere's radius `r`, the caster's `r_c` and the lift
+/// `ε`; `widen` bounds the error of the `N·L` the own-shadow test reads.
+/// [`crate::caster_plane::clearance`] with `δ = Δ·L/|Δ|`, above a margin of `ε` and `2⁻¹²`
+/// of the distance `|Δ| + r + ε`, thousands of times the rounding of
 /// [`super::intersect::meets`] at that distance.
-fn plane_keeps_off((r, rc, eps): (f32, f32, f32), delta: Vec3, to_light: Vec3, widen: f32) -> bool {
+fn plane_keeps_off(radii: (f32, f32, f32), delta: Vec3, to_light: Vec3, widen: f32) -> bool {
+    let (r, _, eps) = radii;
     let len = libm::sqrtf(delta.dot(delta));
-    let lift = r + eps;
-    let delta_l = delta.dot(to_light) / len;
-    let s = libm::sqrtf(1.0 - (r / lift) * (r / lift)) + widen;
-    if !(delta_l > s && s < 1.0 && len > 0.0) {
-        return false;
-    }
-    let cos = libm::sqrtf(1.0 - delta_l * delta_l) * libm::sqrtf(1.0 - s * s) + delta_l * s;
-    let clearance = len - rc - lift * cos;
-    clearance > eps + (len + lift) / 4096.0
+    let clearance = crate::caster_plane::clearance(radii, len, delta.dot(to_light) / len, widen);
+    clearance.is_some_and(|c| c > eps + (len + r + eps) / 4096.0)
 }
 
 #[cfg(test)]
