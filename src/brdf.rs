@@ -660,6 +660,24 @@ pub fn ggx_widening<T: Real>(alpha2: T, spread: T) -> T {
     alpha2 / (wide * wide)
 }
 
+/// Whether some lane of the packet weighs a specular lobe: lobe 0's weight (a normalized
+/// lane's, or `ks`) is positive somewhere, or another lobe is present. Where none does
+/// (Lambert is normalized with weight 0; classic with `ks` 0), the lobe is only ever
+/// multiplied by 0, so `terms_with` takes it as 0 without changing a bit.
+#[inline(always)]
+fn lobe_weighs<T: Real>(p: &Params<T>, masks: &Masks<T>, present: Present) -> bool {
+    let weight = if present.normalized {
+        T::select(masks.normalized, p.weight[0], p.ks)
+    } else {
+        p.ks
+    };
+    #[cfg(feature = "models")]
+    let other_lobes = present.more_lobes || present.ggx;
+    #[cfg(not(feature = "models"))]
+    let other_lobes = present.more_lobes;
+    other_lobes || T::any(T::splat(0.0).lt(weight))
+}
+
 #[doc(hidden)]
 /// [`terms`], with a sphere light's changes when `area` is given (see [`Area`]): `to_light`
 /// is then the representative point's direction, every lobe carries its
@@ -677,19 +695,7 @@ pub fn terms_with<T: Pow>(
 ) -> Terms<T> {
     let zero = T::splat(0.0);
     let n_dot_l = n.dot(to_light).max(zero);
-    // Lanes whose lobe 0 weighs nothing (Lambert: normalized with weight 0; classic with
-    // ks 0): where every lane is such and no other lobe is present, the lobe is only ever
-    // multiplied by 0, so it is taken as 0 without changing a bit.
-    let weight = if present.normalized {
-        T::select(masks.normalized, p.weight[0], p.ks)
-    } else {
-        p.ks
-    };
-    #[cfg(feature = "models")]
-    let other_lobes = present.more_lobes || present.ggx;
-    #[cfg(not(feature = "models"))]
-    let other_lobes = present.more_lobes;
-    let cosine = if other_lobes || T::any(zero.lt(weight)) {
+    let cosine = if lobe_weighs(p, masks, present) {
         specular_cosine(n, to_light, view, masks.blinn)
     } else {
         zero

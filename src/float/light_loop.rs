@@ -137,18 +137,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             if !record_hits && !W::Lane::any(lit) {
                 continue;
             }
-            let mut casters = self.casters_of(surface.hit_spheres, light_index);
-            // One lane with `N·L > 0`: the ray from `P + ε·N` starts `ε` above the sphere's
-            // tangent plane at `P` and moves away from it, and the sphere lies below that
-            // plane; `meets` finds `b + ε > 0` and `(b + ε)² − disc` about `2rε`, far above
-            // its rounding. So its own sphere cannot block it, and it is not tested. (The
-            // SIMD paths test it and must agree bit for bit: `tests/paths_agree.rs`.)
-            if W::Lane::LANES == 1 && !W::Lane::any(facing_away) {
-                let own = surface.id.lane(0);
-                if (0.0..32.0).contains(&own) {
-                    casters &= !(1u32 << own as u32);
-                }
-            }
+            let casters = self.light_casters(surface, light_index, facing_away);
             let blocked = self.shadow(surface, &light, casters);
             if record_hits && light_index < 32 {
                 let bits = W::Lane::bitmask(W::Lane::and(surface.any_hit, blocked));
@@ -167,6 +156,29 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             specular_sum = specular::<_, NORMALIZED>(specular_sum, &light, t.specular, lit);
         }
         (diffuse_sum, specular_sum)
+    }
+
+    /// [`Self::casters_of`] for a packet's shadow rays toward light `light`, less a one-lane
+    /// packet's own sphere where the lane faces the light (`facing_away` false): the ray from
+    /// `P + ε·N` starts `ε` above the sphere's tangent plane at `P` and moves away from it,
+    /// and the sphere lies below that plane; `meets` finds `b + ε > 0` and `(b + ε)² − disc`
+    /// about `2rε`, far above its rounding, so its own sphere cannot block it. (The SIMD
+    /// paths test it and must agree bit for bit: `tests/paths_agree.rs`.)
+    #[inline(always)]
+    fn light_casters(
+        &self,
+        surface: &Surface<W::Lane>,
+        light: usize,
+        facing_away: <W::Lane as Real>::Mask,
+    ) -> u32 {
+        let mut casters = self.casters_of(surface.hit_spheres, light);
+        if W::Lane::LANES == 1 && !W::Lane::any(facing_away) {
+            let own = surface.id.lane(0);
+            if (0.0..32.0).contains(&own) {
+                casters &= !(1u32 << own as u32);
+            }
+        }
+        casters
     }
 
     /// The spheres a packet's shadow rays toward light `light` must test: the spheres its
