@@ -154,6 +154,7 @@ mod kernel_sphere;
 mod mul;
 mod narrow;
 mod narrow_caster_prepare;
+mod narrow_depth;
 mod narrow_hit;
 mod narrow_lobe;
 #[cfg(feature = "narrow-precise")]

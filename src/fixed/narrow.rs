@@ -127,6 +127,7 @@
 //! normal for caster tests and the per-channel scaling by the light's colour.
 
 use super::mul::{dot_ii, mul_u32_u16};
+use super::narrow_depth::DEPTH_ORDER;
 use super::narrow_hit::fast_t;
 use super::narrow_lobe::{fast_h, fast_lobe, precise_lobe};
 use super::narrow_roots::{sigma_of, sqrt_q30};
@@ -273,6 +274,29 @@ pub(super) fn fast_cosines(
     (nl, ld)
 }
 
+/// The surface of track `t` (at index `track`) at a hit of `E′` `e`, from `σ` and `σ²`
+/// (`sigma_of`): `N·V` from `(N·V)² = E′·σ²`.
+#[inline(always)]
+fn track_surface<const L: usize>(
+    t: &Track<L>,
+    track: usize,
+    e: i64,
+    (sigma, sigma2): (i32, u32),
+) -> Surface {
+    // E′ ≤ |d|² ≤ 2 on a hit: about 2³⁰ at most in Q29.
+    let e29 = (high_bits(e, u32::from(t.e_shift)) as u32).min(1 << 30);
+    Surface {
+        index: t.index,
+        track,
+        e,
+        // (N·V)² = E′·σ², Q30.
+        nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
+        sigma,
+        sigma2,
+        shadows: !SHADOW_ROWS || t.shadows,
+    }
+}
+
 /// The lights' sums at a pixel, as the `lights` stage adds them up: diffuse and specular
 /// (U16F16 per channel, before `kd·albedo` and `ks`), whether either has a term (if not, it
 /// is 0 and adds nothing), and the lights found blocked (bit `k` for light `k`, where asked).
@@ -387,6 +411,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let (first, end) = n.shadows;
             let track = Track {
                 index,
+                #[cfg(feature = "depth-order")]
+                rank: self.depth_rank.get(index).copied().unwrap_or(0),
                 span,
                 e: n.e.step_at_cell(y_offset, x_offset),
                 e_shift: u16::from(n.e_shift),
@@ -522,35 +548,28 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if e < 0 {
             return None;
         }
-        let (sigma, sigma2) = sigma_of(run.a.v);
-        let e29 = (high_bits(e, u32::from(t.e_shift)) as u32).min(1 << 30);
-        Some(Surface {
-            index: t.index,
-            track,
-            e,
-            nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
-            sigma,
-            sigma2,
-            shadows: !SHADOW_ROWS || t.shadows,
-        })
+        Some(track_surface(t, track, e, sigma_of(run.a.v)))
     }
 
     /// The `hit` and `normal` stages: the nearest sphere under the run's current pixel, with
     /// `N·V`; `None` for the background. Each active track's `E′` moves one pixel right
-    /// where the loop reads it. Where two or more tracks hit, their `t` are compared, the
-    /// first hit winning a tie; a lone hit needs no `t` (such as a sphere's span
-    /// corners over a floor).
+    /// where the loop reads it. Where two or more tracks hit, in a frame in depth order the
+    /// first in that order wins ([`super::narrow_depth`]), and only its `N·V` is computed;
+    /// otherwise their `t` are compared, the first hit winning a tie. A lone hit needs no
+    /// `t` (such as a sphere's span corners over a floor).
     /// Out of line (only where spans overlap), except on ARMv6-M: there, inlined into the
     /// pixel loop, the loop is both smaller and faster; on the M4F and RV32 inlining costs
     /// instructions (`docs/performance.md, "Choices measured"`).
     #[cfg_attr(shadeline_short_mul, inline(always))]
     #[cfg_attr(not(shadeline_short_mul), inline(never))]
     fn narrow_surface(&self, run: &mut NarrowRun<S, L>) -> Option<Surface> {
-        let (sigma, sigma2) = sigma_of(run.a.v);
+        let sigmas = sigma_of(run.a.v);
         // The nearest hit so far, and its `t` once a second hit needs it (`i64::MAX` before:
         // a hit's `t` is below 2⁴⁸).
         let mut best: Option<Surface> = None;
         let mut nearest = i64::MAX;
+        // In depth order: the rank of the frontmost hit so far.
+        let mut front = u8::MAX;
         for &i in &run.active {
             let t = run.tracks.get_mut(i as usize);
             debug_assert!(t.is_some(), "track {i} of {}", run.tracks.len());
@@ -564,19 +583,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             if e < 0 {
                 continue;
             }
-            // E′ ≤ |d|² ≤ 2 on a hit: about 2³⁰ at most in Q29.
-            let e29 = (high_bits(e, u32::from(t.e_shift)) as u32).min(1 << 30);
-            let surface = Surface {
-                index: t.index,
-                track: i as usize,
-                e,
-                // (N·V)² = E′·σ², Q30.
-                nv: sqrt_q30(scale_q16(e29 << 1, sigma2).min(1 << 30)),
-                sigma,
-                sigma2,
-                shadows: !SHADOW_ROWS || t.shadows,
-            };
-            if let Some(first) = &best {
+            if DEPTH_ORDER && self.depth_ordered {
+                if t.rank() >= front {
+                    continue;
+                }
+                front = t.rank();
+            }
+            let surface = track_surface(t, i as usize, e, sigmas);
+            if let (false, Some(first)) = (DEPTH_ORDER && self.depth_ordered, &best) {
                 if nearest == i64::MAX {
                     nearest = self.narrow_t(first, run.d);
                 }

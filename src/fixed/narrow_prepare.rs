@@ -8,6 +8,7 @@
 use super::convert::to_f32;
 use super::exact::{arriving, Exact};
 use super::mul::{dot_ii, mul_128, mul_ii};
+use super::narrow_depth::DEPTH_ORDER;
 #[cfg(not(feature = "full-width"))]
 use super::outline::{outline_columns, outline_rows};
 use super::prepare::{
@@ -285,6 +286,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 .spheres
                 .iter()
                 .any(|s| s.narrow.is_some_and(|n| n.terms));
+        if DEPTH_ORDER {
+            self.prepare_depth_order();
+        }
         self.narrow = Some(view);
         Ok(())
     }

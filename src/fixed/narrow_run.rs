@@ -7,6 +7,7 @@
 //! by pixel; the set of active tracks changes only where a span begins or ends, so the
 //! pixel loop pays nothing for the spheres of the run that are elsewhere on the row.
 
+use super::narrow_depth::DEPTH_ORDER;
 use super::quadric::Step;
 use super::vector::V3;
 use crate::runs::Span;
@@ -20,6 +21,10 @@ use crate::runs::Span;
 #[derive(Clone, Copy)]
 pub(super) struct Track<const L: usize> {
     pub(super) index: usize,
+    /// The sphere's place in the frame's depth order (`PreparedFixed::depth_rank`). Only
+    /// with the feature `depth-order`: a field more costs the pixel loop of RV32 elsewhere.
+    #[cfg(feature = "depth-order")]
+    pub(super) rank: u8,
     pub(super) span: Span,
     /// `E′` (see the module docs), and the shift that takes it to Q29.
     pub(super) e: Step,
@@ -29,6 +34,17 @@ pub(super) struct Track<const L: usize> {
     pub(super) shadows: bool,
     /// `G` per light.
     pub(super) g: [Step; L],
+}
+
+impl<const L: usize> Track<L> {
+    /// The sphere's place in the frame's depth order; 0 without the feature `depth-order`.
+    #[inline(always)]
+    pub(super) fn rank(&self) -> u8 {
+        #[cfg(feature = "depth-order")]
+        return self.rank;
+        #[cfg(not(feature = "depth-order"))]
+        0
+    }
 }
 
 /// The track index of no track (see [`NarrowRun::single`]).
@@ -119,9 +135,10 @@ impl<const S: usize, const L: usize> NarrowRun<S, L> {
     }
 }
 
-/// The tracks whose span covers column `x` (indices into `tracks`), and the next column
-/// where a span begins or ends. Not inlined: the pixel loop only calls it where a span
-/// begins or ends.
+/// The tracks whose span covers column `x` (indices into `tracks`) by their rank in the
+/// frame's depth order (`Track::rank`; in the tracks' order where the ranks are equal, as
+/// in a frame with no depth order), and the next column where a span begins or ends. Not
+/// inlined: the pixel loop only calls it where a span begins or ends.
 #[inline(never)]
 pub(super) fn activity<const S: usize, const L: usize>(
     tracks: &[Track<L>],
@@ -135,6 +152,16 @@ pub(super) fn activity<const S: usize, const L: usize>(
             // at most 256 spheres, which `u8` indexes: cannot fail.
             let pushed = active.push(i as u8);
             debug_assert!(pushed.is_ok());
+            // Moved ahead of the tracks of a later rank, by swaps (no `memmove`).
+            if DEPTH_ORDER {
+                let rank = |j: u8| tracks.get(usize::from(j)).map_or(0, Track::rank);
+                for k in (1..active.len()).rev() {
+                    match active.get_mut(k - 1..=k) {
+                        Some([a, b]) if rank(*a) > rank(*b) => core::mem::swap(a, b),
+                        _ => break,
+                    }
+                }
+            }
         }
         let next = if x < t.span.start {
             t.span.start

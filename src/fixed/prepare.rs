@@ -350,6 +350,12 @@ pub struct PreparedFixed<const S: usize = 16, const L: usize = 8> {
     /// sphere of a normalized model): the row driver's choice of pixel loop (set with
     /// `narrow`).
     pub(crate) precise_pixels: bool,
+    /// Per sphere, its place front to back among the spheres wherever a ray meets two of
+    /// them, if `depth_ordered`: a pixel over several takes the first it hits (set with
+    /// `narrow`, see [`super::narrow_depth`]).
+    pub(crate) depth_rank: [u8; S],
+    /// Whether no two spheres overlap, so that `depth_rank` orders them.
+    pub(crate) depth_ordered: bool,
     /// The quick caster test's unit of length, `2^quick_shift` raw: the smallest that
     /// takes every sphere's `r + ε` below `2¹⁶` units (set with `narrow`).
     pub(crate) quick_shift: u32,
@@ -573,6 +579,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             distance: 0,
         }; L],
         precise_pixels: false,
+        depth_rank: [0; S],
+        depth_ordered: false,
         quick_shift: 0,
         use_spans: true,
         #[cfg(all(feature = "antialias", feature = "full-width"))]
@@ -627,6 +635,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         self.narrow = None;
         self.narrow_lights.clear();
         self.precise_pixels = false;
+        self.depth_ordered = false;
         self.use_spans = true;
         #[cfg(all(feature = "antialias", feature = "full-width"))]
         {
