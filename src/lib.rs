@@ -138,6 +138,8 @@ pub mod reference;
 pub mod render;
 mod runs;
 pub mod scene;
+#[cfg(feature = "shadow-rows")]
+mod shadow_rows;
 mod test_scenes;
 mod vec3;
 
