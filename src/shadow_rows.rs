@@ -129,18 +129,22 @@ pub(crate) struct Screen {
     /// `|F|/|Sy|`: `dy` per unit of the tangent.
     scale: f32,
     height: f32,
+    /// The least depth a cap's nearest point may have: nearer, its rows are not bounded.
+    near: f32,
 }
 
 impl Screen {
     /// The screen of a frame `height` rows high seen from `eye`, whose pixels' directions
-    /// have the depth `forward` (`F`) and the step `step_y` (`Sy`, half a row up).
-    pub(crate) fn new(eye: P3, forward: P3, step_y: P3, height: u32) -> Self {
+    /// have the depth `forward` (`F`) and the step `step_y` (`Sy`, half a row up); a cap
+    /// whose depth is not above `near` (a small length of the path's unit) keeps every row.
+    pub(crate) fn new(eye: P3, (forward, step_y): (P3, P3), height: u32, near: f32) -> Self {
         let (lf, ly) = (length(forward), length(step_y));
         Screen {
             eye,
             axes: [forward.map(|c| c / lf), step_y.map(|c| c / ly)],
             scale: lf / ly,
             height: height as f32,
+            near,
         }
     }
 
@@ -162,8 +166,8 @@ impl Screen {
     }
 
     /// The rows (fractional, `(first, last)`) of the part of a receiver's surface
-    /// (`(centre, radius, δ)`) within `rho` of `center`, or `None` if it reaches the eye's
-    /// plane; `first > last` if there is none.
+    /// (`(centre, radius, δ)`) within `rho` of `center`, or `None` if it comes within the
+    /// screen's `near` of the eye's plane; `first > last` if there is none.
     ///
     /// That part is a cap of the receiver: the points `X` with `(X − C)·n̂ ≥ τ`, `n̂` toward
     /// `center` and `τ` from the triangle of the two radii and the centres' distance. It lies
@@ -207,7 +211,7 @@ impl Screen {
             (base + a.min(b) - wide, base + a.max(b) + wide)
         };
         let [z, y] = self.axes.map(range);
-        if !greater(z.0, 1.0) {
+        if !greater(z.0, self.near) {
             return None;
         }
         // The tangents above the axis at the interval's ends, over the nearest and the

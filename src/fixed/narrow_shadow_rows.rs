@@ -64,12 +64,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         if self.spheres.iter().enumerate().any(small) {
             return whole;
         }
-        let screen = Screen::new(
-            raw(&self.eye),
-            view.forward.map(|c| c as f32),
-            view.step_y.map(|c| c as f32),
-            self.height,
-        );
+        let [f, sy] = [view.forward, view.step_y].map(|v| v.map(|c| c as f32));
+        // A cap within a raw unit of the eye's plane keeps every row.
+        let screen = Screen::new(raw(&self.eye), (f, sy), self.height, 1.0);
         let radius = own.radius.to_bits() as f32;
         // The hit's distance from the receiver's surface: the rounding of the hit and of the
         // `f32` lengths involved, each many times over. (The shadow ray's lift off the

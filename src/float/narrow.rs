@@ -83,12 +83,16 @@ use crate::vec3::Vec3;
 pub(crate) const COS_ERROR: f32 = 1.0 / 262_144.0;
 
 /// One sphere's quadrics along a row: `E′ = e₀ + e₁·x + e₂·x²`, `b = b₀ + b₁·x`, and per
-/// light `G = g₀ + g₁·x + g₂·x²`, for `x = X − X₀`.
+/// light `G = g₀ + g₁·x + g₂·x²`, for `x = X − X₀`; and whether the row is among the
+/// sphere's shadow rows.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RowSphere<const L: usize> {
     pub e: [f32; 3],
     pub b: [f32; 2],
     pub g: [[f32; 3]; L],
+    /// The row lies in the sphere's shadow rows (`NarrowSphere::shadows`): off them, no
+    /// caster can block a light on the sphere, and its lanes skip the casters' tests.
+    pub shadows: bool,
 }
 
 impl<const L: usize> RowSphere<L> {
@@ -96,8 +100,13 @@ impl<const L: usize> RowSphere<L> {
         e: [0.0; 3],
         b: [0.0; 2],
         g: [[0.0; 3]; L],
+        shadows: true,
     };
 }
+
+/// Whether the frame's shadow rows (`NarrowSphere::shadows`, feature `shadow-rows`) can skip
+/// the casters' tests: without the feature every row tests them.
+const SHADOW_ROWS: bool = cfg!(feature = "shadow-rows");
 
 /// A row's narrow constants: `|D|² = a₀ + a₁·X + a₂·X²`, per light `D·L = l₀ + l₁·X`, and
 /// the [`RowSphere`] of each sphere with a span on the row, with its index (in scene order,
@@ -181,6 +190,13 @@ fn lobe_cosine<T: Lane>(nl: T, nv: T, ld: T, blinn: T::Mask) -> T {
     }
 }
 
+/// Whether sphere `k`'s casters are tested on the row `nrow`: the row lies in its shadow
+/// rows ([`RowSphere::shadows`]), or the frame has none (without `shadow-rows`).
+#[inline(always)]
+fn shadow_row<const S: usize, const L: usize>(nrow: &NarrowRow<S, L>, k: usize) -> bool {
+    !SHADOW_ROWS || nrow.sphere(k).is_none_or(|rs| rs.shadows)
+}
+
 /// `c₀ + x·(c₁ + x·c₂)`.
 #[inline(always)]
 fn horner<T: Lane>(c: [f32; 3], x: T) -> T {
@@ -257,6 +273,8 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 sx2 - n.o_sx.dot(n.o_sx),
             ];
             out.b = [n.o.dot(d0), n.o.dot(view.sx)];
+            let (first, end) = n.shadows;
+            out.shadows = !SHADOW_ROWS || (u32::from(first) <= j && j < u32::from(end));
             for l in 0..lights {
                 let v0 = view.to_light[l].cross(d0);
                 let vx = view.l_sx[l];
@@ -343,7 +361,13 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             &geometry,
             &single.hitting,
             |l| horner(rs.g.get(l).copied().unwrap_or([0.0; 3]), xl),
-            |l| single.filters.get(l).copied().unwrap_or_default(),
+            |l| {
+                // Off the sphere's shadow rows no caster can block: none is tested.
+                if SHADOW_ROWS && !rs.shadows {
+                    return NarrowLight::default();
+                }
+                single.filters.get(l).copied().unwrap_or_default()
+            },
             (record_hits, saturate, &mut packet),
         );
         (packet, key)
@@ -390,6 +414,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 // taken in the stage.
                 let mut f = NarrowLight::default();
                 for &k in candidates {
+                    if !shadow_row(nrow, k as usize) {
+                        continue;
+                    }
                     if let Some(c) = self.narrow_lights.get(k as usize).and_then(|c| c.get(l)) {
                         f.casters |= c.casters;
                         f.ahead = f.ahead.max(c.ahead);
@@ -549,7 +576,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     });
                     blocked = W::Lane::or(
                         blocked,
-                        self.narrow_casters(light_index, candidates, geo.id, origin, near),
+                        self.narrow_casters((light_index, nrow), candidates, geo.id, origin, near),
                     );
                 }
             }
@@ -583,11 +610,12 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 
     /// The lanes of `near` (those the caster filter lets through) whose shadow ray from
     /// `origin` (`P + ε·N`) toward distant light `light` meets one of the casters of the
-    /// lane's own sphere: the general kernel's [`meets`]. Out of line: a few pixels a frame.
+    /// lane's own sphere: the general kernel's [`meets`]. A sphere off its shadow rows on the
+    /// row (`nrow`) has none. Out of line: a few pixels a frame.
     #[inline(never)]
     fn narrow_casters(
         &self,
-        light: usize,
+        (light, nrow): (usize, &NarrowRow<S, L>),
         candidates: &[u16],
         id: W::Lane,
         origin: Vec3<W::Lane>,
@@ -595,6 +623,9 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     ) -> <W::Lane as Real>::Mask {
         let (zero, one) = (W::Lane::splat(0.0), W::Lane::splat(1.0));
         let mask = |k: usize| {
+            if !shadow_row(nrow, k) {
+                return 0;
+            }
             self.narrow_lights
                 .get(k)
                 .and_then(|l| l.get(light))
