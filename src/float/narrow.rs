@@ -46,7 +46,11 @@
 //! `N = ô − (b·σ + N·V)·σ·D`; a lane's own sphere shadows it iff `N·L < 0` and
 //! `(N·L)² > 1 − r²/(r + ε)²`, and a caster is tested only where the caster filter (from
 //! `N·L` alone, see the fixed path's `NarrowLight`) lets it; a caster a plane keeps off
-//! every such ray (the floor under a sphere resting on it) is not among the sphere's.
+//! every such ray (the floor under a sphere resting on it) is not among the sphere's. On a
+//! floor, a run of packets whose only candidate is the floor tests no caster on the rows
+//! outside its shadow rows (`NarrowSphere::shadows`, feature `shadow-rows`, see
+//! `shadow_rows`), where none can block a light; packets with several candidates test them
+//! as before, which changes no pixel either.
 //!
 //! # Precision
 //!
@@ -83,16 +87,12 @@ use crate::vec3::Vec3;
 pub(crate) const COS_ERROR: f32 = 1.0 / 262_144.0;
 
 /// One sphere's quadrics along a row: `E′ = e₀ + e₁·x + e₂·x²`, `b = b₀ + b₁·x`, and per
-/// light `G = g₀ + g₁·x + g₂·x²`, for `x = X − X₀`; and whether the row is among the
-/// sphere's shadow rows.
+/// light `G = g₀ + g₁·x + g₂·x²`, for `x = X − X₀`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct RowSphere<const L: usize> {
     pub e: [f32; 3],
     pub b: [f32; 2],
     pub g: [[f32; 3]; L],
-    /// The row lies in the sphere's shadow rows (`NarrowSphere::shadows`): off them, no
-    /// caster can block a light on the sphere, and its lanes skip the casters' tests.
-    pub shadows: bool,
 }
 
 impl<const L: usize> RowSphere<L> {
@@ -100,7 +100,6 @@ impl<const L: usize> RowSphere<L> {
         e: [0.0; 3],
         b: [0.0; 2],
         g: [[0.0; 3]; L],
-        shadows: true,
     };
 }
 
@@ -190,11 +189,11 @@ fn lobe_cosine<T: Lane>(nl: T, nv: T, ld: T, blinn: T::Mask) -> T {
     }
 }
 
-/// Whether sphere `k`'s casters are tested on the row `nrow`: the row lies in its shadow
-/// rows ([`RowSphere::shadows`]), or the frame has none (without `shadow-rows`).
-#[inline(always)]
-fn shadow_row<const S: usize, const L: usize>(nrow: &NarrowRow<S, L>, k: usize) -> bool {
-    !SHADOW_ROWS || nrow.sphere(k).is_none_or(|rs| rs.shadows)
+/// The caster filters of a sphere off its shadow rows: no caster, for every light.
+struct NoCasters<const L: usize>;
+
+impl<const L: usize> NoCasters<L> {
+    const FILTERS: &'static [NarrowLight; L] = &[NarrowLight::NONE; L];
 }
 
 /// `c₀ + x·(c₁ + x·c₂)`.
@@ -273,8 +272,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 sx2 - n.o_sx.dot(n.o_sx),
             ];
             out.b = [n.o.dot(d0), n.o.dot(view.sx)];
-            let (first, end) = n.shadows;
-            out.shadows = !SHADOW_ROWS || (u32::from(first) <= j && j < u32::from(end));
             for l in 0..lights {
                 let v0 = view.to_light[l].cross(d0);
                 let vx = view.l_sx[l];
@@ -289,23 +286,32 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         }
     }
 
-    /// Sphere `k`'s constants on the row (`nrow`), for packets that test it alone; `None` if
-    /// it has no span there.
+    /// Sphere `k`'s constants on row `j` (`nrow`), for packets that test it alone; `None`
+    /// if it has no span there.
     #[inline(always)]
     pub(crate) fn single<'a>(
         &'a self,
         k: usize,
-        nrow: &'a NarrowRow<S, L>,
+        (j, nrow): (u32, &'a NarrowRow<S, L>),
     ) -> Option<Single<'a, W::Lane, L>> {
         let s = self.spheres.get(k)?;
         let n = s.narrow.as_ref()?;
         let p = &s.params;
+        let filters = self.narrow_lights.get(k)?;
+        // Off the sphere's shadow rows no caster can block: none is tested. Chosen here,
+        // once for every packet of the run.
+        let (first, end) = n.shadows;
+        let tested = !SHADOW_ROWS || (u32::from(first) <= j && j < u32::from(end));
         Some(Single {
             id: k as f32,
             origin: n.origin,
             radius: n.radius,
             row: nrow.sphere(k)?,
-            filters: self.narrow_lights.get(k)?,
+            filters: if tested {
+                filters
+            } else {
+                NoCasters::<L>::FILTERS
+            },
             hitting: Hitting {
                 kd_albedo: Vec3::splat(p.kd_albedo),
                 ks: W::Lane::splat(n.ks),
@@ -361,13 +367,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             &geometry,
             &single.hitting,
             |l| horner(rs.g.get(l).copied().unwrap_or([0.0; 3]), xl),
-            |l| {
-                // Off the sphere's shadow rows no caster can block: none is tested.
-                if SHADOW_ROWS && !rs.shadows {
-                    return NarrowLight::default();
-                }
-                single.filters.get(l).copied().unwrap_or_default()
-            },
+            |l| single.filters.get(l).copied().unwrap_or_default(),
             (record_hits, saturate, &mut packet),
         );
         (packet, key)
@@ -414,9 +414,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 // taken in the stage.
                 let mut f = NarrowLight::default();
                 for &k in candidates {
-                    if !shadow_row(nrow, k as usize) {
-                        continue;
-                    }
                     if let Some(c) = self.narrow_lights.get(k as usize).and_then(|c| c.get(l)) {
                         f.casters |= c.casters;
                         f.ahead = f.ahead.max(c.ahead);
@@ -576,7 +573,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                     });
                     blocked = W::Lane::or(
                         blocked,
-                        self.narrow_casters((light_index, nrow), candidates, geo.id, origin, near),
+                        self.narrow_casters(light_index, candidates, geo.id, origin, near),
                     );
                 }
             }
@@ -610,12 +607,11 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
 
     /// The lanes of `near` (those the caster filter lets through) whose shadow ray from
     /// `origin` (`P + ε·N`) toward distant light `light` meets one of the casters of the
-    /// lane's own sphere: the general kernel's [`meets`]. A sphere off its shadow rows on the
-    /// row (`nrow`) has none. Out of line: a few pixels a frame.
+    /// lane's own sphere: the general kernel's [`meets`]. Out of line: a few pixels a frame.
     #[inline(never)]
     fn narrow_casters(
         &self,
-        (light, nrow): (usize, &NarrowRow<S, L>),
+        light: usize,
         candidates: &[u16],
         id: W::Lane,
         origin: Vec3<W::Lane>,
@@ -623,9 +619,6 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
     ) -> <W::Lane as Real>::Mask {
         let (zero, one) = (W::Lane::splat(0.0), W::Lane::splat(1.0));
         let mask = |k: usize| {
-            if !shadow_row(nrow, k) {
-                return 0;
-            }
             self.narrow_lights
                 .get(k)
                 .and_then(|l| l.get(light))

@@ -209,6 +209,15 @@ pub(crate) struct NarrowLight {
     pub reach: f32,
 }
 
+impl NarrowLight {
+    /// No caster (the default): nothing is tested.
+    pub(crate) const NONE: NarrowLight = NarrowLight {
+        casters: 0,
+        ahead: 0.0,
+        reach: 0.0,
+    };
+}
+
 /// The frame's narrow constants: the directions' steps and each light's `L × Sx`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct NarrowView<const L: usize> {
