@@ -23,14 +23,19 @@
 //! volume for each light, bounded on the receiver and projected onto the screen's rows. This
 //! file gives it the float path's geometry (the scene's centres and radii, the eye and the
 //! narrow view's `F` and `Sy`, the lights' directions) and margins for the rounding of its
-//! `f32` rays, scaled, as that rounding is, by the scene's extent through the ray's lift `ε`
-//! (`10⁻⁴` of the largest coordinate, thousands of times an `f32` rounding of it): the
-//! casters widened by `2⁻¹⁰` of their radius and `5ε` (the lift, the lifted point's and the
-//! shadow test's rounding), the receiver's surface by `2ε` and `2⁻¹²` of its farthest
-//! distance from the eye (the narrow hit's error is `2⁻¹⁸` of the eye's distance, see
-//! `narrow::COS_ERROR`), each interval of a volume's axis by `ε` besides the shared margin.
-//! Where the geometry cannot bound the rows every row is kept: the rows only ever skip pixels
-//! no caster can block, which `the_shadow_rows_change_no_pixel` holds on random floors.
+//! `f32` rays. The absolute ones scale, as that rounding does, with the scene's extent,
+//! through the ray's lift `ε` (`10⁻⁴` of the largest coordinate, a thousand times an `f32`
+//! rounding of it): the casters are widened by `2⁻¹⁰` of their radius and `5ε` (the lift,
+//! the lifted point's and the shadow test's rounding), each interval of a volume's axis by
+//! `ε` besides the shared margin, and a cap within `ε` of the eye's plane keeps every row.
+//! The receiver's surface is widened by `ε/64` (the rounding of the hit's coordinates, 16
+//! times over) and `2⁻¹⁶` of its farthest distance from the eye: the narrow hit lies off the
+//! surface by at most the error of its `N·V` times the radius, `|ô|·r·2⁻¹⁸` (see
+//! `narrow::COS_ERROR`, measured at under 0.6 of it), which that is four times over. The
+//! surface's margin is the one that costs rows: a cap's disc on a floor of radius `R`
+//! widens by about `√(2Rδ)` for a margin `δ`. Where the geometry cannot bound the rows every
+//! row is kept: the rows only ever skip pixels no caster can block, which
+//! `the_shadow_rows_change_no_pixel` holds on random floors.
 
 use super::prepare::{FloatPath, Prepared};
 use crate::scene::Scene;
