@@ -83,7 +83,7 @@
 //! | `blinn-phong` | on | the Blinn-Phong models ([`Model::BlinnPhong`], [`Model::NormalizedBlinnPhong`]: the half-vector lobe) on every path; without it the kernels hold none of the half-vector lobe's code, and [`Scene::add_sphere`] refuses such a sphere with [`Problem::ModelNotBuilt`] |
 //! | `full-width` | on | the fixed path's full-width kernel (32×32→64-bit products throughout), for the frames its narrow kernel does not take: sphere lights, Oren–Nayar and GGX, fields of view over about 90° on the diagonal, a camera close to a sphere; without it the fixed path is the narrow kernel alone and [`PreparedFixed::new`] refuses such a frame with [`RenderError::NeedsFullWidth`] naming the item and field (see [`fixed`]) |
 //! | `narrow-precise` | on | the fixed path's narrow-kernel stages for point lights (of radius 0) and the normalized models (see `src/fixed/narrow_point.rs`, `narrow_terms.rs`, `narrow_precise.rs`); without it the narrow kernel takes distant lights and the classic models and Lambert only, and a frame with a point light or a normalized sphere takes the full-width kernel, or without that is refused with [`RenderError::NeedsNarrowPrecise`] naming the light or sphere |
-//! | `shadow-rows` | on | the fixed path's shadow rows (see `src/fixed/narrow_shadow_rows.rs`): per frame, the rows of a floor on which a caster can block a light, outside which its pixels skip the casters' tests, and each sphere's casters less those a plane keeps off its rays (a floor under a sphere resting on it); without it every row tests every caster (no pixel differs) and the prepare holds none of this `f32` geometry |
+//! | `shadow-rows` | on | the narrow kernels' shadow rows (see `src/shadow_rows.rs`, `src/fixed/narrow_shadow_rows.rs`, `src/float/shadow_rows.rs`): per frame, the rows of a floor on which a caster can block a light, outside which its pixels skip the casters' tests, and on the fixed path each sphere's casters less those a plane keeps off its rays (a floor under a sphere resting on it); without it every row tests every caster (no pixel differs) and the prepare holds none of this `f32` geometry |
 //! | `depth-order` | on | the fixed narrow kernel's depth order (see `src/fixed/narrow_depth.rs`): where no two spheres overlap, a pixel over several takes the first its ray meets in an order made once per frame, with no distances compared (the pixels of spheres over a floor); without it such pixels compare distances (no pixel differs) and the kernel holds none of that code |
 //! | `embedded-graphics` | off | `eg::Drawing`, a `Drawable` over `embedded-graphics-core` 0.4 (`Rgb565`, `Bgr565`, `Rgb888`, `Gray8`), and `From` conversions both ways between those colours and shadeline's formats of the same names |
 //!
@@ -139,6 +139,8 @@ pub mod reference;
 pub mod render;
 mod runs;
 pub mod scene;
+#[cfg(feature = "shadow-rows")]
+mod shadow_rows;
 mod test_scenes;
 mod vec3;
 

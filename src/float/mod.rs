@@ -14,6 +14,7 @@
 //! | `sphere_light` | a sphere light's `incoming` and `shadow` in the general kernel (`area-lights`) |
 //! | `intersect` | the ray–sphere tests: the nearest hit, the shadow test, an edge's filtered hit |
 //! | `narrow` | the narrow kernel: classic models under distant lights, from quadrics along the row |
+//! | `shadow_rows` | the narrow kernel's shadow rows on a floor (`shadow-rows`): where its casters' tests can be skipped |
 //! | `area` | sphere lights: the diffuse horizon, the covered share of the light's cap, `acos` |
 //! | `edges` | analytic anti-aliasing of the silhouettes: each outline's coverage of a pixel, and the blend |
 //! | `lane` | the lane trait: [`Real`](crate::real::Real) plus the operations only lanes have, each exactly specified |
@@ -38,6 +39,8 @@ mod math;
 mod narrow;
 mod prepare;
 mod row;
+#[cfg(feature = "shadow-rows")]
+mod shadow_rows;
 mod spans;
 #[cfg(feature = "area-lights")]
 mod sphere_light;

@@ -46,7 +46,11 @@
 //! `N = ô − (b·σ + N·V)·σ·D`; a lane's own sphere shadows it iff `N·L < 0` and
 //! `(N·L)² > 1 − r²/(r + ε)²`, and a caster is tested only where the caster filter (from
 //! `N·L` alone, see the fixed path's `NarrowLight`) lets it; a caster a plane keeps off
-//! every such ray (the floor under a sphere resting on it) is not among the sphere's.
+//! every such ray (the floor under a sphere resting on it) is not among the sphere's. On a
+//! floor, a run of packets whose only candidate is the floor tests no caster on the rows
+//! outside its shadow rows (`NarrowSphere::shadows`, feature `shadow-rows`, see
+//! `shadow_rows`), where none can block a light; packets with several candidates test them
+//! as before, which changes no pixel either.
 //!
 //! # Precision
 //!
@@ -98,6 +102,10 @@ impl<const L: usize> RowSphere<L> {
         g: [[0.0; 3]; L],
     };
 }
+
+/// Whether the frame's shadow rows (`NarrowSphere::shadows`, feature `shadow-rows`) can skip
+/// the casters' tests: without the feature every row tests them.
+const SHADOW_ROWS: bool = cfg!(feature = "shadow-rows");
 
 /// A row's narrow constants: `|D|² = a₀ + a₁·X + a₂·X²`, per light `D·L = l₀ + l₁·X`, and
 /// the [`RowSphere`] of each sphere with a span on the row, with its index (in scene order,
@@ -179,6 +187,13 @@ fn lobe_cosine<T: Lane>(nl: T, nv: T, ld: T, blinn: T::Mask) -> T {
     } else {
         phong
     }
+}
+
+/// The caster filters of a sphere off its shadow rows: no caster, for every light.
+struct NoCasters<const L: usize>;
+
+impl<const L: usize> NoCasters<L> {
+    const FILTERS: &'static [NarrowLight; L] = &[NarrowLight::NONE; L];
 }
 
 /// `c₀ + x·(c₁ + x·c₂)`.
@@ -271,23 +286,32 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
         }
     }
 
-    /// Sphere `k`'s constants on the row (`nrow`), for packets that test it alone; `None` if
-    /// it has no span there.
+    /// Sphere `k`'s constants on row `j` (`nrow`), for packets that test it alone; `None`
+    /// if it has no span there.
     #[inline(always)]
     pub(crate) fn single<'a>(
         &'a self,
         k: usize,
-        nrow: &'a NarrowRow<S, L>,
+        (j, nrow): (u32, &'a NarrowRow<S, L>),
     ) -> Option<Single<'a, W::Lane, L>> {
         let s = self.spheres.get(k)?;
         let n = s.narrow.as_ref()?;
         let p = &s.params;
+        let filters = self.narrow_lights.get(k)?;
+        // Off the sphere's shadow rows no caster can block: none is tested. Chosen here,
+        // once for every packet of the run.
+        let (first, end) = n.shadows;
+        let tested = !SHADOW_ROWS || (u32::from(first) <= j && j < u32::from(end));
         Some(Single {
             id: k as f32,
             origin: n.origin,
             radius: n.radius,
             row: nrow.sphere(k)?,
-            filters: self.narrow_lights.get(k)?,
+            filters: if tested {
+                filters
+            } else {
+                NoCasters::<L>::FILTERS
+            },
             hitting: Hitting {
                 kd_albedo: Vec3::splat(p.kd_albedo),
                 ks: W::Lane::splat(n.ks),

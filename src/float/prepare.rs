@@ -191,6 +191,10 @@ pub(crate) struct NarrowSphere {
     /// The lobe's weight: `ks`, or 0 for Lambert, which the narrow kernel shades as a
     /// classic sphere of diffuse weight `kd·albedo/π` and no lobe.
     pub ks: f32,
+    /// The shadow rows `[first, end)` (feature `shadow-rows`, see `shadow_rows`): on other
+    /// rows no caster can block a light on the sphere, and its pixels skip the casters'
+    /// tests (their own shadow stays). Every row without the feature.
+    pub shadows: (u16, u16),
 }
 
 /// A sphere's constants for one light: the caster filter (see the fixed path's
@@ -203,6 +207,15 @@ pub(crate) struct NarrowLight {
     pub ahead: f32,
     /// `(N·L)²` above this: no caster is within reach.
     pub reach: f32,
+}
+
+impl NarrowLight {
+    /// No caster (the default): nothing is tested.
+    pub(crate) const NONE: NarrowLight = NarrowLight {
+        casters: 0,
+        ahead: 0.0,
+        reach: 0.0,
+    };
 }
 
 /// The frame's narrow constants: the directions' steps and each light's `L × Sx`.
@@ -498,19 +511,15 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 return Err((Item::Sphere(i), "shininess"));
             }
             let o = oc.scale(s.inv_radius);
-            // The middle column: the centre's projection, as a whole number of half pixels.
-            let c = -oc;
-            let (cx, cz) = (c.dot(self.right), c.dot(self.forward));
-            let origin =
-                (cx / cz * (self.width_f / self.x_scale)).clamp(-self.width_f, self.width_f);
-            let origin = libm::roundf(origin);
             let narrow = NarrowSphere {
                 o,
                 o_sx: o.cross(sx),
-                origin: if origin.is_finite() { origin } else { 0.0 },
+                origin: self.middle_column(oc),
                 radius: r,
                 own_limit: eps * (2.0 * r + eps) / ((r + eps) * (r + eps)),
                 ks,
+                // Every row until `prepare_shadow_rows`.
+                shadows: (0, self.height as u16),
             };
             let mut lights = [NarrowLight::default(); L];
             for (k, (nl, t)) in lights.iter_mut().zip(&to_light).enumerate() {
@@ -530,7 +539,38 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
             to_light,
             l_sx: to_light.map(|l| l.cross(sx)),
         });
+        self.prepare_shadow_rows(scene, sy);
         Ok(())
+    }
+
+    /// A sphere's middle column for the narrow kernel (`NarrowSphere::origin`), from its
+    /// offset `oc = eye − centre`: the centre's projection, as a whole number of half pixels
+    /// from the image centre, within the frame's width on either side (0 if not finite).
+    fn middle_column(&self, oc: Vec3) -> f32 {
+        let c = -oc;
+        let (cx, cz) = (c.dot(self.right), c.dot(self.forward));
+        let origin = (cx / cz * (self.width_f / self.x_scale)).clamp(-self.width_f, self.width_f);
+        let origin = libm::roundf(origin);
+        if origin.is_finite() {
+            origin
+        } else {
+            0.0
+        }
+    }
+
+    /// Sets each narrow sphere's shadow rows (`NarrowSphere::shadows`) with the feature
+    /// `shadow-rows` ([`super::shadow_rows`], on the narrow view's step `sy` up); without
+    /// it every sphere keeps every row.
+    fn prepare_shadow_rows(&mut self, scene: &Scene<S, L>, sy: Vec3) {
+        #[cfg(feature = "shadow-rows")]
+        for i in 0..self.spheres.len() {
+            let rows = self.shadow_rows(scene, i, sy);
+            if let Some(n) = self.spheres.get_mut(i).and_then(|s| s.narrow.as_mut()) {
+                n.shadows = rows;
+            }
+        }
+        #[cfg(not(feature = "shadow-rows"))]
+        let _ = (scene, sy);
     }
 
     /// Sphere `i`'s caster filter for distant light `k` toward `to_light` (see the fixed

@@ -229,7 +229,7 @@ impl<W: FloatPath, const S: usize, const L: usize> Prepared<W, S, L> {
                 let (list, fresh) = candidates.overlapping_fresh(spans, x0, x1);
                 if fresh {
                     single = match list {
-                        [k] => self.single(*k as usize, nrow),
+                        [k] => self.single(*k as usize, (y, nrow)),
                         _ => None,
                     };
                 }
