@@ -36,6 +36,36 @@ pub(crate) struct Draw {
     pub varied: bool,
 }
 
+/// The draw of the narrow kernels' random frames: grey spheres of radius 0.3 to 1.5 within a
+/// box of 6 × 4 × 6 around the origin.
+pub(crate) const NARROW_DRAW: Draw = Draw {
+    half_extent: Vec3::new(3.0, 2.0, 3.0),
+    radius: (0.3, 1.5),
+    varied: false,
+};
+
+/// Of the pixels of `hits` (rows of `width`) that hit a sphere, how many there are and how
+/// many lie outside their sphere's shadow rows, `[first, end)` from `rows_of(sphere)`.
+pub(crate) fn outside_rows(
+    hits: &[crate::HitRecord],
+    width: u32,
+    rows_of: impl Fn(usize) -> (u16, u16),
+) -> (usize, usize) {
+    let (mut covered, mut outside) = (0, 0);
+    for (k, hit) in hits.iter().enumerate() {
+        let Some(sphere) = hit.sphere.map(usize::from) else {
+            continue;
+        };
+        covered += 1;
+        let y = (k as u32 / width) as u16;
+        let (first, end) = rows_of(sphere);
+        if !(first <= y && y < end) {
+            outside += 1;
+        }
+    }
+    (covered, outside)
+}
+
 /// One to six spheres with exponents `2⁰…2¹¹` under one to three distant lights, the
 /// camera 9 units from the origin, looking at it with a field of view of 25° to 60°.
 pub(crate) fn random_classic_scene<const S: usize, const L: usize>(

@@ -854,14 +854,9 @@ pub(super) mod tests {
     /// Random narrow frames (one to three distant lights, up to six Phong and Blinn-Phong
     /// spheres that may overlap and shadow each other), from `seed`.
     fn random_frames(seed: u64, count: usize) -> Vec<PreparedFixed<16, 8>> {
-        use crate::test_scenes::{random_classic_scene, Draw};
-        use crate::vec3::Vec3;
+        use crate::test_scenes::random_classic_scene;
         let mut next = uniform(seed);
-        let draw = Draw {
-            half_extent: Vec3::new(3.0, 2.0, 3.0),
-            radius: (0.3, 1.5),
-            varied: false,
-        };
+        let draw = crate::test_scenes::NARROW_DRAW;
         let mut out = Vec::new();
         for _ in 0..count {
             let scene = random_classic_scene::<16, 8>(&mut next, &draw);

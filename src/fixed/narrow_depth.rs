@@ -106,7 +106,7 @@ mod tests {
     use crate::fixed::narrow::tests::surfaces;
     use crate::scene::{Camera, Light, Material, Model, Scene, Sphere};
     use crate::test_scenes::{
-        random_classic_scene, random_floor_scene, random_lamp_scene, uniform, Draw,
+        random_classic_scene, random_floor_scene, random_lamp_scene, uniform,
     };
     use crate::vec3::Vec3;
     use crate::LinearRgb;
@@ -118,11 +118,7 @@ mod tests {
     /// unordered) and spheres resting on floors under distant lights and under lamps.
     fn frames(seed: u64) -> Vec<PreparedFixed<16, 8>> {
         let mut next = uniform(seed);
-        let draw = Draw {
-            half_extent: Vec3::new(3.0, 2.0, 3.0),
-            radius: (0.3, 1.5),
-            varied: false,
-        };
+        let draw = crate::test_scenes::NARROW_DRAW;
         let mut out = Vec::new();
         for k in 0..120 {
             let scene: Scene<16, 8> = match k % 3 {

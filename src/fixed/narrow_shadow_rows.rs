@@ -175,17 +175,9 @@ mod tests {
             }
             let (colours, hits) = render(&frame, size);
             assert!((colours, hits.clone()) == render(&whole, size), "scene {n}");
-            for (k, hit) in hits.iter().enumerate() {
-                let Some(sphere) = hit.sphere.map(usize::from) else {
-                    continue;
-                };
-                covered += 1;
-                let y = (k as u32 / size.0) as u16;
-                let (first, end) = frame.spheres[sphere].narrow.unwrap().shadows;
-                if !(first <= y && y < end) {
-                    outside += 1;
-                }
-            }
+            let rows_of = |sphere: usize| frame.spheres[sphere].narrow.unwrap().shadows;
+            let (seen, off) = crate::test_scenes::outside_rows(&hits, size.0, rows_of);
+            (covered, outside) = (covered + seen, outside + off);
         }
         assert!(
             outside * 8 > covered,

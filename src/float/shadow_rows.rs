@@ -194,17 +194,9 @@ mod tests {
             let hits = want.1;
             let blocked = caster_shadowed(&frame, &hits);
             shadowed += blocked.iter().filter(|&&b| b).count();
-            for (k, hit) in hits.iter().enumerate() {
-                let Some(sphere) = hit.sphere.map(usize::from) else {
-                    continue;
-                };
-                covered += 1;
-                let y = (k as u32 / size.0) as u16;
-                let (first, end) = frame.spheres[sphere].narrow.unwrap().shadows;
-                if !(first <= y && y < end) {
-                    outside += 1;
-                }
-            }
+            let rows_of = |sphere: usize| frame.spheres[sphere].narrow.unwrap().shadows;
+            let (seen, off) = crate::test_scenes::outside_rows(&hits, size.0, rows_of);
+            (covered, outside) = (covered + seen, outside + off);
         }
         assert!(frames >= 40, "only {frames} narrow frames");
         assert!(
