@@ -590,6 +590,10 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                 front = t.rank();
             }
             let surface = track_surface(t, i as usize, e, sigmas);
+            // In depth order `best` is `None` here (the active tracks are in rank order, so
+            // a later hit has a later rank); the flag is tested all the same, which the
+            // pixel loops of every target compile to fewer instructions (`docs/performance.md`,
+            // "Choices measured").
             if let (false, Some(first)) = (DEPTH_ORDER && self.depth_ordered, &best) {
                 if nearest == i64::MAX {
                     nearest = self.narrow_t(first, run.d);
