@@ -11,10 +11,10 @@
 //!
 //! a sum of two positive terms: no cancellation where the camera is close to a large sphere
 //! (a floor), where `−ô·D̂·r − r·(N·V)` would lose the relative precision the Q15 `N·V` has.
-//! One table square root and one reciprocal (the narrow kernel's `rsqrt`, squared) per
+//! One table square root and one reciprocal (the narrow kernel's `rsqrt_at`, squared) per
 //! pixel; `c` and `r·c` are the sphere's (`NarrowSphere::c_q30`, `t_mantissa`).
 
-use super::narrow_roots::{rsqrt, sqrt_q30};
+use super::narrow_roots::{rsqrt_mid, sqrt_q30};
 use super::prepare::NarrowSphere;
 
 /// The hit's distance `t` (raw) along `D̂` on sphere `ns` from `N·V` (Q15):
@@ -30,7 +30,7 @@ pub(super) fn fast_t(ns: &NarrowSphere, nv: i32) -> u32 {
         .saturating_add((sqrt_q30(arg) as u32) << j)
         .max(1);
     // 1/den = y²·2^-2e: t = r·c·2¹⁵/den.
-    let (y, e) = rsqrt(den);
+    let (y, e) = rsqrt_mid(den);
     let y2 = (y.min(0xffff) * y.min(0xffff)) >> 16;
     shift_u32(
         ns.t_mantissa as u32 * y2,

@@ -5,7 +5,7 @@
 
 use super::exact::{shift_saturating, Exact};
 use super::mul::{leading_zeros32, mul_ii, mul_iu, mul_uu};
-use super::narrow_roots::rsqrt;
+use super::narrow_roots::rsqrt_high;
 use super::narrow_scale::high_bits;
 use super::pow::{exp2_neg_q16, INV_LN2_F31, LOG_TABLE};
 use super::prepare::NarrowSphere;
@@ -31,7 +31,7 @@ pub(super) fn fast_h(blinn: bool, nl: i32, nv: i32, ld: i32) -> (u32, bool) {
         if len2 < BLINN_LEN2_MIN {
             return (if nl + nv > 0 { 0 } else { u32::MAX }, false);
         }
-        let (y, e) = rsqrt(len2);
+        let (y, e) = rsqrt_high(len2);
         // 1/|L + V| = y·2^(15 − e) (len2 is Q30): N·H in Q29.
         let p = mul_ii(nl + nv, y as i32); // |p| < 2³³
         let nh = if e >= 29 {

@@ -20,7 +20,7 @@
 //! under a camera close to it, where `−ô·D̂ − N·V` would lose it. Every product is a raw
 //! length times a Q15 cosine (two 16×16-bit products, [`mul_q15`]) or of two 15-bit
 //! numbers after one shift that brings the longest length below `2¹⁵`; `1/|P − X|` and
-//! the reciprocal in `t` come from the narrow kernel's `rsqrt`. No 32×32→64-bit product.
+//! the reciprocal in `t` come from the narrow kernel's `rsqrt_at`. No 32×32→64-bit product.
 //!
 //! # When
 //!
@@ -42,7 +42,7 @@ use super::narrow::Surface;
 use super::narrow::{Casters, PointSeen};
 use super::narrow_hit::{bit_length, fast_t, mul_q15, shift_u32};
 use super::narrow_lobe::{fast_h, narrow_lobe};
-use super::narrow_roots::rsqrt;
+use super::narrow_roots::rsqrt_high;
 use super::narrow_scale::ONE;
 use super::narrow_scale::{scale_q15, scale_q16};
 use super::narrow_terms::fast_terms;
@@ -98,21 +98,32 @@ impl FastPoint {
 }
 
 /// The fast point-light geometry at a hit from `N·V` (Q15), the fast cosines `N·q̂` and
-/// `q̂·D̂` (Q15) and the light's distance `|Q|` from the eye (raw).
+/// `q̂·D̂` (Q15) and the light's distance `|Q|` from the eye (raw) with the shift that brings
+/// it below `2¹⁵` (`NarrowPoint::distance_shift`).
 #[inline(always)]
-pub(super) fn point_cosines(ns: &NarrowSphere, nv: i32, (nq, qd): (i32, i32), q: u32) -> FastPoint {
+pub(super) fn point_cosines(
+    ns: &NarrowSphere,
+    nv: i32,
+    (nq, qd): (i32, i32),
+    (q, q_shift): (u32, u32),
+) -> FastPoint {
     let t = fast_t(ns, nv);
     let qq = mul_q15(q as i32, qd);
     let pd = qq.wrapping_sub(t as i32);
     let np = mul_q15(q as i32, nq).wrapping_add(mul_q15(t as i32, nv));
-    // The lengths below 2¹⁵ after one shift: |P − X|² of the shifted ones below 2³¹.
-    let longest = pd.unsigned_abs().max(q);
-    let s = bit_length(longest).saturating_sub(15);
+    // The lengths below 2¹⁵ after one shift: |P − X|² of the shifted ones below 2³¹. The
+    // shift is that of the longer of (P − X)·D̂ and |Q|: |Q|'s, made once per frame, unless
+    // the other is longer.
+    let s = if pd.unsigned_abs() > q {
+        bit_length(pd.unsigned_abs()).saturating_sub(15)
+    } else {
+        q_shift
+    };
     let (ps, qs, qqs) = (pd >> s, (q >> s) as i32, qq >> s);
     let q2 = (qs * qs) as u32;
     let dist2 = (ps * ps + qs * qs - qqs * qqs).max(1) as u32;
     // 1/|P − X| = y·2^-(e + s), e ≥ 16.
-    let (y, e) = rsqrt(dist2);
+    let (y, e) = rsqrt_high(dist2);
     let mut point = FastPoint {
         nl: 0,
         ld: 0,
@@ -167,7 +178,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             g,
             ns.g_shift as u32,
         );
-        let q = point.distance;
+        let q = (point.distance, point.distance_shift);
         let fast = point_cosines(ns, surface.nv, cosines, q);
         // (|Q|/|P − X|)² at most `point.ratio` (Q4): the error bound the prepare allowed for.
         if fast.q2 >> 4 > (fast.dist2 >> 8) * light.point.ratio as u32 {
@@ -370,8 +381,8 @@ mod tests {
                         seen.g[k].v,
                         ns.g_shift as u32,
                     );
-                    let q = frame.points[k].distance;
-                    let fast = point_cosines(ns, nv, cosines, q);
+                    let (q, q_shift) = (frame.points[k].distance, frame.points[k].distance_shift);
+                    let fast = point_cosines(ns, nv, cosines, (q, q_shift));
                     let factor = (1.0 + q as f64 / dist).powi(2);
                     let err = (fast.nl as f64 / 32768.0 - nl_x)
                         .abs()

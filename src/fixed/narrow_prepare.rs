@@ -561,10 +561,14 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             let dir = inv_sqrt(len2).map_or([0; 3], |(y, shift)| {
                 q.map(|c| ((c * y as i64) >> (shift - 30).min(63)) as i32)
             });
+            #[cfg(feature = "narrow-precise")]
+            let distance = sqrt(len2).min(i32::MAX as u64) as u32;
             *point = NarrowPoint {
                 dir,
                 #[cfg(feature = "narrow-precise")]
-                distance: sqrt(len2).min(i32::MAX as u64) as u32,
+                distance,
+                #[cfg(feature = "narrow-precise")]
+                distance_shift: super::narrow_hit::bit_length(distance).saturating_sub(15),
             };
         }
     }

@@ -1,8 +1,8 @@
 //! The narrow kernel's table roots ([`super::narrow`]): `σ = 1/|d|` from `|d|²`
-//! ([`sigma_of`]), `1/√x` ([`rsqrt`]) and `√x` of a Q30 value ([`sqrt_q30`]), each a small
+//! ([`sigma_of`]), `1/√x` ([`rsqrt_at`]) and `√x` of a Q30 value ([`sqrt_q30`]), each a small
 //! table made at compile time and one interpolation or Newton step, with the error bound its
 //! test holds it to. The precise forms, in 30-bit fractions, are [`super::roots`]', and
-//! [`rsqrt`] starts from their table (one table of `1/√u` in the crate).
+//! [`rsqrt_at`] starts from their table (one table of `1/√u` in the crate).
 
 use super::roots::initial;
 
@@ -43,11 +43,54 @@ pub(super) fn sigma_of(a: i64) -> (i32, u32) {
     ((s30 >> 15) as i32, (s16 * s16 + (1 << 15)) >> 16)
 }
 
-/// `1/√x` for `x > 0` as `(y, e)`: `1/√x ≈ y·2^-e`, `y` in about `[2¹⁵, 2¹⁶]`, within
-/// `1.5·2⁻¹⁵` relative: a table lookup and one Newton step `y·(3 − m·y²)/2`.
+/// [`rsqrt_at`] for an `x > 0` mostly in `[2²⁶, 2³²)` (`|P − X|²` at the fast point
+/// light's shift, `|L + V|²`): on cores without `CLZ` (`shadeline_no_clz`), where the count
+/// of leading zeros is a search, its even count from [`even_leading_zeros_high`]'s two
+/// comparisons.
 #[inline(always)]
-pub(crate) fn rsqrt(x: u32) -> (u32, u32) {
-    let k = even_leading_zeros(x);
+pub(super) fn rsqrt_high(x: u32) -> (u32, u32) {
+    let k = if cfg!(shadeline_no_clz) {
+        even_leading_zeros_high(x)
+    } else {
+        even_leading_zeros(x)
+    };
+    rsqrt_at(x, k)
+}
+
+/// [`rsqrt_at`] for an `x > 0` mostly in `[2¹², 2²⁰)` (the denominator of the fast `t`,
+/// about `2¹⁵` times `N·V + √((N·V)² + c)`): on cores without `CLZ`, its even count of
+/// leading zeros from two or three comparisons there, the search elsewhere.
+#[inline(always)]
+pub(super) fn rsqrt_mid(x: u32) -> (u32, u32) {
+    if !cfg!(shadeline_no_clz) {
+        return rsqrt_at(x, even_leading_zeros(x));
+    }
+    let k = if x >= 1 << 16 {
+        if x >= 1 << 18 {
+            if x >= 1 << 20 {
+                even_leading_zeros(x)
+            } else {
+                12
+            }
+        } else {
+            14
+        }
+    } else if x >= 1 << 14 {
+        16
+    } else if x >= 1 << 12 {
+        18
+    } else {
+        even_leading_zeros(x)
+    };
+    rsqrt_at(x, k)
+}
+
+/// `1/√x` for `x > 0` as `(y, e)`: `1/√x ≈ y·2^-e`, `y` in about `[2¹⁵, 2¹⁶]`, within
+/// `1.5·2⁻¹⁵` relative: a table lookup and one Newton step `y·(3 − m·y²)/2`. `k` is `x`'s
+/// count of leading zeros rounded down to even ([`even_leading_zeros`]).
+#[inline(always)]
+pub(super) fn rsqrt_at(x: u32, k: u32) -> (u32, u32) {
+    debug_assert_eq!(k, even_leading_zeros(x));
     (rsqrt_normalized(x << k), 31 - k / 2)
 }
 
@@ -91,7 +134,27 @@ pub(super) fn sqrt_q30(x: u32) -> i32 {
     if x == 0 {
         return 0;
     }
-    // N·V's argument is mostly in [2²⁶, 2³⁰]: there two comparisons give the even count.
+    // N·V's argument is mostly in [2²⁶, 2³⁰].
+    let k = even_leading_zeros_high(x);
+    let m = x << k; // in [2³⁰, 2³²)
+    let bin = (m >> 24) as usize; // 64..=255
+    let frac = (m >> 13) & 0x7ff;
+    let (lo, hi) = (
+        SQRT_TABLE.get(bin).copied().unwrap_or(1 << 29),
+        SQRT_TABLE.get(bin + 1).copied().unwrap_or(1 << 29),
+    );
+    // The table rises by at most 2²¹ per bin. √(m/2³²) in Q29; √x = that·2^(1 − k/2).
+    let root = lo + (((hi - lo) * frac) >> 11);
+    let shift = 13 + k / 2;
+    ((root + (1 << (shift - 1))) >> shift) as i32
+}
+
+/// [`even_leading_zeros`] of `x > 0` mostly in `[2²⁶, 2³²)`: two comparisons there, the
+/// count elsewhere. [`sqrt_q30`] takes it on every core (`N·V`'s square is there; on the
+/// M4F too the comparisons cost its pixel loop less than `CLZ` and the rounding to even,
+/// `docs/performance.md`, "Choices measured").
+#[inline(always)]
+fn even_leading_zeros_high(x: u32) -> u32 {
     let k = if x >= 1 << 28 {
         if x >= 1 << 30 {
             0
@@ -104,17 +167,7 @@ pub(super) fn sqrt_q30(x: u32) -> i32 {
         even_leading_zeros(x)
     };
     debug_assert_eq!(k, even_leading_zeros(x));
-    let m = x << k; // in [2³⁰, 2³²)
-    let bin = (m >> 24) as usize; // 64..=255
-    let frac = (m >> 13) & 0x7ff;
-    let (lo, hi) = (
-        SQRT_TABLE.get(bin).copied().unwrap_or(1 << 29),
-        SQRT_TABLE.get(bin + 1).copied().unwrap_or(1 << 29),
-    );
-    // The table rises by at most 2²¹ per bin. √(m/2³²) in Q29; √x = that·2^(1 − k/2).
-    let root = lo + (((hi - lo) * frac) >> 11);
-    let shift = 13 + k / 2;
-    ((root + (1 << (shift - 1))) >> shift) as i32
+    k
 }
 
 /// The number of leading zeros of `x > 0`, rounded down to even: the shift that brings `x`
@@ -157,7 +210,7 @@ mod tests {
                 let Ok(v) = u32::try_from(v) else {
                     continue;
                 };
-                let (y, e) = rsqrt(v);
+                let (y, e) = rsqrt_at(v, even_leading_zeros(v));
                 let got = y as f64 / (e as f64).exp2();
                 let want = 1.0 / (v as f64).sqrt();
                 worst = worst.max((got / want - 1.0).abs());

@@ -146,6 +146,11 @@ pub(crate) struct NarrowPoint {
     pub dir: [i32; 3],
     #[cfg(feature = "narrow-precise")]
     pub distance: u32,
+    /// The shift that brings `distance` below `2¹⁵` (`bit_length − 15`, at least 0): the fast
+    /// point light's shift wherever the other lengths it takes are shorter (see
+    /// `narrow_point::point_cosines`), so that those pixels need no count of leading zeros.
+    #[cfg(feature = "narrow-precise")]
+    pub distance_shift: u32,
 }
 
 /// A sphere's narrow constants for one light: `G` (see [`NarrowSphere`]) and a filter in
@@ -577,6 +582,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
             dir: [0; 3],
             #[cfg(feature = "narrow-precise")]
             distance: 0,
+            #[cfg(feature = "narrow-precise")]
+            distance_shift: 0,
         }; L],
         precise_pixels: false,
         depth_rank: [0; S],

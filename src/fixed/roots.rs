@@ -20,7 +20,7 @@ use super::mul::{leading_zeros, mul_uu};
 
 /// Entries of the table: one per top-8-bit pattern of a `u32`. A value in `[1, 4)` (U2F30)
 /// reads `64..=255`; the entries below 64, which it never reaches, repeat bin 64's, so that
-/// the top byte indexes the table with no check (the narrow kernel's `rsqrt` reads it per
+/// the top byte indexes the table with no check (the narrow kernel's `rsqrt_at` reads it per
 /// pixel).
 const BINS: usize = 256;
 
@@ -91,7 +91,7 @@ fn top_bits(x: u64) -> (u32, u32) {
 }
 
 /// The table's estimate of `1/√u` for `u` in U2F30, `[1, 4)`, in U1F31: also the narrow
-/// kernel's `rsqrt` (`super::narrow_roots`), which takes its top 16 bits.
+/// kernel's `rsqrt_at` (`super::narrow_roots`), which takes its top 16 bits.
 #[inline(always)]
 pub(super) fn initial(u: u32) -> u32 {
     debug_assert!(u >= 1 << 30, "u = {u:#x} is not in [1, 4)");
