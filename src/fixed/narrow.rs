@@ -175,6 +175,9 @@ pub(crate) enum PointSeen {
     Blocked,
     /// The light needs the precise path at this pixel (`precise_light`).
     Precise,
+    /// The light needs the precise path for its lobe at this pixel, and its shadow ray need
+    /// only test these casters (a mask): the fast filters cleared the others.
+    PreciseLobe(u32),
 }
 
 /// Whether the frame's shadow rows (`NarrowSphere::shadows`, feature `shadow-rows`) can skip

@@ -154,7 +154,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Point light `light_index` at a narrow hit along `d`, fast (see the module docs): its
     /// diffuse and specular sums, blocked (the own shadow or a caster), or
     /// [`PointSeen::Precise`] where its error bound does not let it serve (then
-    /// `precise_light` shades the light).
+    /// `precise_light` shades the light); [`PointSeen::PreciseLobe`] where only the lobe
+    /// needs the precise path, with the casters the fast filters leave to its ray.
     #[inline(always)]
     pub(super) fn fast_point(
         &self,
@@ -191,29 +192,32 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         #[cfg(test)]
         self.assert_separated_point_clear(surface, (sphere, ns, light), light_index, d, (g, dl));
         let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);
-        let lobes = if h >= ns.cutoff {
-            None
+        let (lobes, precise) = if h >= ns.cutoff {
+            (None, false)
+        } else if !trusted {
+            (None, true)
         } else {
-            if !trusted {
-                return PointSeen::Precise;
-            }
             let lobe = narrow_lobe(h, sphere.shininess);
             let max = light.point.fast;
-            if max < u16::MAX && (h > 1 << 30 || lobe > max as u32) {
-                return PointSeen::Precise;
-            }
-            Some((h, lobe))
+            let precise = max < u16::MAX && (h > 1 << 30 || lobe > max as u32);
+            (Some((h, lobe)), precise)
         };
-        if light.casters != 0
-            && self.fast_point_blocked(
-                surface,
-                (sphere, ns, light),
-                (light_index, position),
-                d,
-                (g, dl),
-                &fast,
-            )
-        {
+        let at = (light_index, position);
+        let found = if light.casters == 0 {
+            Casters::Left(0)
+        } else {
+            let filters = (sphere, ns, light);
+            self.fast_point_filters(surface, filters, at, d, (g, dl), &fast)
+        };
+        // The bright part of a sharp highlight, or a Blinn-Phong half vector too close to
+        // 0: the precise path shades the light, and its ray tests only the casters the fast
+        // filters leave.
+        let left = match found {
+            Casters::Blocked => return PointSeen::Blocked,
+            Casters::Left(left) if precise => return PointSeen::PreciseLobe(left),
+            Casters::Left(left) => left,
+        };
+        if left != 0 && self.point_shadowed(surface, (sphere, ns), light_index, d, (g, dl), left) {
             return PointSeen::Blocked;
         }
         let arriving = fast_arriving(power, (fast.y, fast.shift));
@@ -253,12 +257,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         );
     }
 
-    /// The `shadow` stage of the fast point light (`fast` its geometry at the hit) toward
-    /// point light `light_index` at `position`: the casters' filters
-    /// (`point_casters`), then the precise ray for the casters they leave. Under
+    /// The casters' filters (`point_casters`) of the fast point light (`fast` its geometry
+    /// at the hit) toward point light `light_index` at `position`: the casters they leave
+    /// to the precise ray, or [`Casters::Blocked`]; none off the sphere's shadow rows. Under
     /// `cfg(test)`, every decision of the filters is asserted against the precise ray.
     #[inline(always)]
-    fn fast_point_blocked(
+    fn fast_point_filters(
         &self,
         surface: &Surface,
         (sphere, ns, light): (&FixedSphere, &NarrowSphere, &NarrowLight),
@@ -266,44 +270,32 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         d: V3<i32>,
         (g, dl): (i64, i64),
         fast: &FastPoint,
-    ) -> bool {
+    ) -> Casters {
         let ray = (position, d, surface.sigma);
         let found = if surface.shadows {
             self.point_casters(light_index, light, ray, fast)
         } else {
             Casters::Left(0)
         };
-        let left = match found {
-            Casters::Blocked => {
-                #[cfg(test)]
-                assert!(
-                    self.point_shadowed(
-                        surface,
-                        (sphere, ns),
-                        light_index,
-                        d,
-                        (g, dl),
-                        light.casters
-                    ),
-                    "the quick test found blocked a ray that is not"
-                );
-                return true;
-            }
-            Casters::Left(left) => left,
-        };
         #[cfg(test)]
-        assert!(
-            !self.point_shadowed(
-                surface,
-                (sphere, ns),
-                light_index,
-                d,
-                (g, dl),
-                light.casters & !left
-            ),
-            "the quick tests cleared a caster that blocks"
-        );
-        left != 0 && self.point_shadowed(surface, (sphere, ns), light_index, d, (g, dl), left)
+        {
+            let shadowed = |casters| {
+                self.point_shadowed(surface, (sphere, ns), light_index, d, (g, dl), casters)
+            };
+            match found {
+                Casters::Blocked => assert!(
+                    shadowed(light.casters),
+                    "the quick test found blocked a ray that is not"
+                ),
+                Casters::Left(left) => assert!(
+                    !shadowed(light.casters & !left),
+                    "the quick tests cleared a caster that blocks"
+                ),
+            }
+        }
+        #[cfg(not(test))]
+        let _ = (sphere, ns, g, dl);
+        found
     }
 }
 

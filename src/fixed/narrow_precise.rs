@@ -149,7 +149,8 @@ fn precise_point(
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Light `light_index` at a narrow hit, from the precise cosines: its diffuse and
     /// specular sums (U16F16 per channel, before `kd·albedo` and `ks`), or `None` where it is
-    /// blocked. The path of point lights, and of every light on a sphere of a normalized model
+    /// blocked. A point light's shadow ray tests `casters` (the light's, or those the fast
+    /// filters left); a distant light's shadow takes its own filters. The path of point lights, and of every light on a sphere of a normalized model
     /// (`NarrowSphere::terms`, whose terms are the full-width kernel's, `normalized_terms`).
     /// In 30-bit fractions and raw lengths throughout, from the exact quadrics of the light's
     /// direction (`G` and `D·L` as the run holds them, `g_dl`); for a point light that is the
@@ -160,7 +161,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         &self,
         surface: &Surface,
         (sphere, ns, light): (&FixedSphere, &NarrowSphere, &NarrowLight),
-        light_index: usize,
+        (light_index, casters): (usize, u32),
         d: V3<i32>,
         (g, dl): (i64, i64),
     ) -> Option<([u32; 3], [u32; 3])> {
@@ -196,7 +197,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     "a caster separated from sphere {} blocks its ray toward light {light_index}",
                     surface.index
                 );
-                if light.casters != 0 && surface.shadows && ray(light.casters) {
+                #[cfg(test)]
+                assert!(
+                    !surface.shadows || !ray(light.casters & !casters),
+                    "a caster the fast filters cleared blocks the precise ray"
+                );
+                if casters != 0 && surface.shadows && ray(casters) {
                     return None;
                 }
                 (nl, ld, arriving(*power, geometry.inv))

@@ -110,10 +110,13 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         } else {
             self.distant_terms(surface, (sphere, ns, light), light_index, d, (g, dl))
         };
-        if !matches!(fast, PointSeen::Precise) {
-            return fast;
-        }
-        match self.precise_light(surface, (sphere, ns, light), light_index, d, (g, dl)) {
+        let casters = match fast {
+            PointSeen::Precise => light.casters,
+            PointSeen::PreciseLobe(casters) => casters,
+            _ => return fast,
+        };
+        let at = (light_index, casters);
+        match self.precise_light(surface, (sphere, ns, light), at, d, (g, dl)) {
             Some((diffuse, specular)) => PointSeen::Lit(diffuse, specular),
             None => PointSeen::Blocked,
         }
