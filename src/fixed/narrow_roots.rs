@@ -68,7 +68,7 @@ pub(super) fn rsqrt_mid(x: u32) -> (u32, u32) {
     let k = if x >= 1 << 16 {
         if x >= 1 << 18 {
             if x >= 1 << 20 {
-                even_leading_zeros(x)
+                outside_range(x)
             } else {
                 12
             }
@@ -80,7 +80,7 @@ pub(super) fn rsqrt_mid(x: u32) -> (u32, u32) {
     } else if x >= 1 << 12 {
         18
     } else {
-        even_leading_zeros(x)
+        outside_range(x)
     };
     rsqrt_at(x, k)
 }
@@ -164,10 +164,21 @@ fn even_leading_zeros_high(x: u32) -> u32 {
     } else if x >= 1 << 26 {
         4
     } else {
-        even_leading_zeros(x)
+        outside_range(x)
     };
     debug_assert_eq!(k, even_leading_zeros(x));
     k
+}
+
+/// [`even_leading_zeros`] for the arguments outside the range a caller's comparisons
+/// cover. Out of line and cold on ARMv6-M, so that the pixel loops, which inline those
+/// comparisons at each of their copies, share one search there (its flash); inline
+/// elsewhere, where the call cost the M4F's and RV32's point-lit frames 1 to 3%
+/// (`docs/performance.md`, "Choices measured").
+#[cfg_attr(shadeline_short_mul, inline(never), cold)]
+#[cfg_attr(not(shadeline_short_mul), inline(always))]
+fn outside_range(x: u32) -> u32 {
+    even_leading_zeros(x)
 }
 
 /// The number of leading zeros of `x > 0`, rounded down to even: the shift that brings `x`
