@@ -150,8 +150,9 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// Light `light_index` at a narrow hit, from the precise cosines: its diffuse and
     /// specular sums (U16F16 per channel, before `kd·albedo` and `ks`), or `None` where it is
     /// blocked. A point light's shadow ray tests `casters` (the light's, or those the fast
-    /// filters left); a distant light's shadow takes its own filters. The path of point lights, and of every light on a sphere of a normalized model
-    /// (`NarrowSphere::terms`, whose terms are the full-width kernel's, `normalized_terms`).
+    /// filters left); a distant light's shadow takes its own filters. The path of point
+    /// lights, and of every light on a sphere of a normalized model (`NarrowSphere::terms`,
+    /// whose terms are the full-width kernel's, `normalized_terms`).
     /// In 30-bit fractions and raw lengths throughout, from the exact quadrics of the light's
     /// direction (`G` and `D·L` as the run holds them, `g_dl`); for a point light that is the
     /// direction `q̂` from the eye toward it, and the light's geometry is [`precise_point`]'s.
