@@ -1,8 +1,12 @@
 //! Every integration test of shadeline, as the modules of one test binary: the renderers are
 //! generic over path, lane width, capacities and pixel format, and one crate instantiates
 //! them once for all the files, where a binary per file compiles and links its own copies
-//! of each. `common` holds the helpers the files share. (`frame_hashes` holds the frames that
-//! `checks/bit-identity` renders on other instruction sets.)
+//! of each. For the same reason the files render at few capacities: the default one (the
+//! presets' and `common::TestScene`'s), the capacities of the library's own scene types
+//! (`MatrixScene`, `area_lights`, `covered_sphere`, the firmware's animation) and the ones a
+//! test is about; each more compiles every kernel again. `common` holds the helpers the
+//! files share. (`frame_hashes` holds the frames that `checks/bit-identity` renders on other
+//! instruction sets.)
 
 mod common;
 

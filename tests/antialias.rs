@@ -111,14 +111,14 @@ fn only_pixels_next_to_an_outline_change_and_some_do() {
 
 /// One white diffuse sphere lit by a distant light from behind the eye, on a black
 /// background, and the image size for it.
-fn grey_sphere() -> (Scene<1, 1>, u32, u32) {
+fn grey_sphere() -> (Scene, u32, u32) {
     let camera = Camera {
         position: Vec3::new(0.0, 0.0, 10.0),
         look_at: Vec3::new(0.0, 0.0, 0.0),
         up: Vec3::new(0.0, 1.0, 0.0),
         vfov_degrees: 30.0,
     };
-    let mut scene: Scene<1, 1> = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+    let mut scene: Scene = Scene::new(camera, LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
     scene
         .add_sphere(Sphere {
             center: Vec3::new(0.0, 0.0, 0.0),
@@ -177,11 +177,11 @@ fn assert_edges_between_sphere_and_background<T: PartialOrd + Copy + Default + c
 fn an_edge_pixel_lies_between_the_sphere_and_the_background() {
     let (scene, w, h) = grey_sphere();
     let frame_aa: Vec<LinearRgb> = frame(
-        &Prepared::<Scalar, 1, 1>::new(&scene, w, h)
+        &Prepared::<Scalar>::new(&scene, w, h)
             .unwrap()
             .with_antialiasing(true),
     );
-    let sharp: Vec<LinearRgb> = frame(&Prepared::<Scalar, 1, 1>::new(&scene, w, h).unwrap());
+    let sharp: Vec<LinearRgb> = frame(&Prepared::<Scalar>::new(&scene, w, h).unwrap());
     for c in &frame_aa {
         assert!(c.r == c.g && c.g == c.b, "{c:?} is not grey");
     }
@@ -252,15 +252,15 @@ mod fixed {
 
     #[test]
     fn turning_it_off_and_preparing_again_give_the_sharp_frame() {
-        let scene = exponent_series_with_capacity::<5, 1>().unwrap();
+        let scene = exponent_series().unwrap();
         let (sharp, _, smooth) = frames(&scene, 64, 48);
         assert_ne!(sharp, smooth);
-        let frame_off = PreparedFixed::<5, 1>::new(&scene, 64, 48)
+        let frame_off = PreparedFixed::new(&scene, 64, 48)
             .unwrap()
             .with_antialiasing(true)
             .with_antialiasing(false);
         assert_eq!(frame::<Rgb888, _>(&frame_off), sharp);
-        let mut again = PreparedFixed::<5, 1>::EMPTY;
+        let mut again = PreparedFixed::EMPTY;
         again.prepare(&scene, 64, 48).unwrap();
         again.set_antialiasing(true);
         assert_eq!(frame::<Rgb888, _>(&again), smooth);
@@ -272,7 +272,7 @@ mod fixed {
     /// from the spans' conic): with spans off it tests every pixel, and finds the same edges.
     #[test]
     fn the_outline_bands_leave_out_no_edge() {
-        let check = |name: &str, sharp: PreparedFixed<8, 4>| {
+        let check = |name: &str, sharp: PreparedFixed| {
             let with: Vec<Rgb888> = frame(&sharp.clone().with_antialiasing(true));
             let without: Vec<Rgb888> = frame(&sharp.with_spans(false).with_antialiasing(true));
             assert!(
@@ -280,7 +280,7 @@ mod fixed {
                 "{name}: the bands changed the anti-aliased frame"
             );
         };
-        let series = exponent_series_with_capacity::<8, 4>().unwrap();
+        let series = exponent_series().unwrap();
         check(
             "exponent series",
             PreparedFixed::new(&series, 96, 70).unwrap(),
@@ -366,7 +366,7 @@ mod fixed {
 
     #[test]
     fn an_antialiased_fixed_frame_has_the_same_bits_everywhere() {
-        let f = PreparedFixed::<5, 1>::new(&exponent_series_with_capacity().unwrap(), 160, 120)
+        let f = PreparedFixed::new(&exponent_series().unwrap(), 160, 120)
             .unwrap()
             .with_antialiasing(true);
         let pixels: Vec<Rgb565> = frame(&f);

@@ -14,7 +14,7 @@
 use shadeline::scene::{MAX_COORDINATE, MAX_INTENSITY, MAX_SHININESS, MAX_VALUE, MIN_RADIUS};
 use shadeline::*;
 
-type S = Scene<4, 4>;
+type S = Scene;
 
 fn camera() -> Camera {
     Camera {
@@ -694,7 +694,7 @@ fn brightest_point_light_on_a_surface_saturates_without_overflow() {
     let centre = rows[4].linear[4];
     assert!(centre.r > 1.0e30, "{centre:?}");
     let mut px = [Rgb888::default(); 9];
-    Prepared::<Scalar, 4, 4>::new(&s, 9, 9)
+    Prepared::<Scalar>::new(&s, 9, 9)
         .unwrap()
         .render_line(4, &mut px)
         .unwrap();
@@ -1028,7 +1028,7 @@ fn weights_far_above_energy_conservation_saturate_finitely() {
     let rows = rows_checked(&scene, 9, 9, &(0..9).collect::<Vec<_>>(), Fixed::Refused);
     assert!(rows[4].linear[4].r > 1.0e5);
     let mut px = [Gray8::default(); 9];
-    Prepared::<Simd8, 4, 4>::new(&scene, 9, 9)
+    Prepared::<Simd8>::new(&scene, 9, 9)
         .unwrap()
         .with_encoding(Encoding::SRGB.dithered())
         .render_line(4, &mut px)
@@ -1045,8 +1045,8 @@ fn black_stays_black_and_white_stays_white_in_every_encoding() {
         (MAX_VALUE, [255, 255, 255]),
     ] {
         let scene = S::new(camera(), LinearRgb::new(bg, bg, bg)).unwrap();
-        let f = Prepared::<Simd4, 4, 4>::new(&scene, 13, 6).unwrap();
-        let fixed = PreparedFixed::<4, 4>::new(&scene, 13, 6);
+        let f = Prepared::<Simd4>::new(&scene, 13, 6).unwrap();
+        let fixed = PreparedFixed::new(&scene, 13, 6);
         for e in ENCODINGS {
             for y in 0..6 {
                 let (a, b, c, _) = encoded(&f, y, e);
@@ -1144,9 +1144,9 @@ fn width_or_height_0_is_refused() {
             width: w,
             height: h,
         };
-        assert_eq!(Prepared::<Scalar, 4, 4>::new(&s, w, h).unwrap_err(), want);
-        assert_eq!(Prepared::<Simd4, 4, 4>::new(&s, w, h).unwrap_err(), want);
-        assert_eq!(Prepared::<Simd8, 4, 4>::new(&s, w, h).unwrap_err(), want);
+        assert_eq!(Prepared::<Scalar>::new(&s, w, h).unwrap_err(), want);
+        assert_eq!(Prepared::<Simd4>::new(&s, w, h).unwrap_err(), want);
+        assert_eq!(Prepared::<Simd8>::new(&s, w, h).unwrap_err(), want);
     }
 }
 
@@ -1215,24 +1215,9 @@ fn all_paths_refuse(w: u32, y: u32, len: usize, want: RenderError) {
         assert_eq!(r.render_line(y, &mut linear), Err(want));
     }
     let s = scene();
-    check(
-        &Prepared::<Scalar, 4, 4>::new(&s, w, 5).unwrap(),
-        y,
-        len,
-        want,
-    );
-    check(
-        &Prepared::<Simd4, 4, 4>::new(&s, w, 5).unwrap(),
-        y,
-        len,
-        want,
-    );
-    check(
-        &Prepared::<Simd8, 4, 4>::new(&s, w, 5).unwrap(),
-        y,
-        len,
-        want,
-    );
+    check(&Prepared::<Scalar>::new(&s, w, 5).unwrap(), y, len, want);
+    check(&Prepared::<Simd4>::new(&s, w, 5).unwrap(), y, len, want);
+    check(&Prepared::<Simd8>::new(&s, w, 5).unwrap(), y, len, want);
 }
 
 #[test]
@@ -1266,7 +1251,7 @@ fn y_out_of_range_is_refused() {
 
 #[test]
 fn frame_slice_of_the_wrong_length_is_refused() {
-    let f = Prepared::<Simd8, 4, 4>::new(&scene(), 8, 5).unwrap();
+    let f = Prepared::<Simd8>::new(&scene(), 8, 5).unwrap();
     for len in [39, 41, 0] {
         let mut px = vec![Rgb565::default(); len];
         assert_eq!(
@@ -1402,7 +1387,7 @@ fn row_tangent_to_a_sphere_keeps_its_span() {
     for (w, h) in [(1, 1), (3, 3), (9, 9)] {
         let (x, y) = (w / 2, h / 2);
         let want = reference::shade_pixel(&s, w, h, x, y).hit;
-        let spans = Prepared::<Scalar, 4, 4>::new(&s, w, h).unwrap();
+        let spans = Prepared::<Scalar>::new(&s, w, h).unwrap();
         let naive = spans.clone().with_spans(false);
         assert_eq!(render(&naive, y).hits[x as usize], want, "{w}x{h}");
         assert_eq!(render(&spans, y).hits[x as usize], want, "{w}x{h}");

@@ -576,7 +576,7 @@ fn kernel_reflected<P: KernelPath>(m: &Material, l: D, view: D) -> [f64; 3] {
         },
         vfov_degrees: 30.0,
     };
-    let mut scene: Scene<1, 1> = Scene::new(camera, LinearRgb::default()).unwrap();
+    let mut scene: Scene = Scene::new(camera, LinearRgb::default()).unwrap();
     scene
         .add_sphere(Sphere {
             center: f32v(N).scale(-1.0),
@@ -599,15 +599,15 @@ fn kernel_reflected<P: KernelPath>(m: &Material, l: D, view: D) -> [f64; 3] {
 trait KernelPath {
     const NAME: &'static str;
     /// The one pixel of a 1×1 frame of `scene`, linear.
-    fn pixel(scene: &Scene<1, 1>) -> LinearRgb;
+    fn pixel(scene: &Scene) -> LinearRgb;
 }
 
 struct FloatKernel;
 impl KernelPath for FloatKernel {
     const NAME: &'static str = "f32 kernel";
-    fn pixel(scene: &Scene<1, 1>) -> LinearRgb {
+    fn pixel(scene: &Scene) -> LinearRgb {
         let mut px = [LinearRgb::default()];
-        let frame = Prepared::<Scalar, 1, 1>::new(scene, 1, 1).unwrap();
+        let frame = Prepared::<Scalar>::new(scene, 1, 1).unwrap();
         frame.render_line(0, &mut px).unwrap();
         px[0]
     }
@@ -616,9 +616,9 @@ impl KernelPath for FloatKernel {
 struct FixedKernel;
 impl KernelPath for FixedKernel {
     const NAME: &'static str = "fixed kernel";
-    fn pixel(scene: &Scene<1, 1>) -> LinearRgb {
+    fn pixel(scene: &Scene) -> LinearRgb {
         let mut px = [LinearRgb::default()];
-        let frame = PreparedFixed::<1, 1>::new(scene, 1, 1).unwrap();
+        let frame = PreparedFixed::new(scene, 1, 1).unwrap();
         frame.render_line(0, &mut px).unwrap();
         px[0]
     }

@@ -195,9 +195,9 @@ fn random_scenes_small_sizes_and_an_offset() {
     for (i, scene) in random_scenes(6, 0x5eed_e600).iter().enumerate() {
         for (w, h) in [(1, 1), (3, 2), (67, 41), (130, 9)] {
             let label = format!("random scene {i} {w}x{h}");
-            let f = Prepared::<Simd4, 8, 4>::new(scene, w, h).unwrap();
+            let f = Prepared::<Simd4>::new(scene, w, h).unwrap();
             draw_and_check::<pixelcolor::Rgb565, _>(&f, &label);
-            let f = PreparedFixed::<8, 4>::new(scene, w, h)
+            let f = PreparedFixed::new(scene, w, h)
                 .unwrap()
                 .with_encoding(Encoding::LINEAR.dithered());
             draw_and_check::<pixelcolor::Gray8, _>(&f, &label);

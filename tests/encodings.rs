@@ -100,17 +100,17 @@ fn float_paths_store_the_encoding_rule_and_agree_bit_for_bit() {
         "series simd8",
     );
     for (label, scene, w, h) in scenes.drain(..) {
-        let scalar = Prepared::<Scalar, 8, 4>::new(&scene, w, h).unwrap();
+        let scalar = Prepared::<Scalar>::new(&scene, w, h).unwrap();
         let codes = float_codes(&scalar);
         let codes = |_| codes.clone();
         check_against_rule(&scalar, codes, &label);
         check_against_rule(
-            &Prepared::<Simd4, 8, 4>::new(&scene, w, h).unwrap(),
+            &Prepared::<Simd4>::new(&scene, w, h).unwrap(),
             codes,
             &label,
         );
         check_against_rule(
-            &Prepared::<Simd8, 8, 4>::new(&scene, w, h)
+            &Prepared::<Simd8>::new(&scene, w, h)
                 .unwrap()
                 .with_spans(false),
             codes,
@@ -136,7 +136,7 @@ fn fixed_path_stores_the_encoding_rule() {
     let fixed = PreparedFixed::new(&series, 160, 120).unwrap();
     check_against_rule(&fixed, |e| fixed_codes(&fixed, e), "series fixed");
     for (i, scene) in random_scenes(8, 0x5eed_f1c0).iter().enumerate() {
-        let f = PreparedFixed::<8, 4>::new(scene, 67, 41).unwrap();
+        let f = PreparedFixed::new(scene, 67, 41).unwrap();
         check_against_rule(
             &f,
             |e| fixed_codes(&f, e),
@@ -226,11 +226,8 @@ fn segments_equal_whole_rows_and_coverage_is_conservative() {
     assert_segments_match(&PreparedFixed::new(&series, w, h).unwrap(), "fixed");
     for (i, scene) in random_scenes(6, 0x5eed_5e90).iter().enumerate() {
         let label = format!("random scene {i}");
-        assert_segments_match(
-            &Prepared::<Simd4, 8, 4>::new(scene, 45, 30).unwrap(),
-            &label,
-        );
-        assert_segments_match(&PreparedFixed::<8, 4>::new(scene, 45, 30).unwrap(), &label);
+        assert_segments_match(&Prepared::<Simd4>::new(scene, 45, 30).unwrap(), &label);
+        assert_segments_match(&PreparedFixed::new(scene, 45, 30).unwrap(), &label);
     }
 }
 

@@ -63,7 +63,7 @@ fn spans_change_no_pixel_with_spheres_near_and_around_the_camera() {
         up: Vec3::new(0.0, 1.0, 0.0),
         vfov_degrees: 90.0,
     };
-    let mut scene: Scene<8, 2> = Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.1)).unwrap();
+    let mut scene: Scene = Scene::new(camera, LinearRgb::new(0.1, 0.1, 0.1)).unwrap();
     for (c, r) in [
         (Vec3::new(1.5, 0.0, 2.5), 1.0),
         (Vec3::new(0.0, 0.0, 3.2), 0.5),
@@ -254,7 +254,7 @@ fn prepared_in_place_is_the_same_frame_and_an_error_leaves_it_empty() {
         material: Material::default(),
     })
     .unwrap();
-    let mut small = PreparedFixed::<4, 2>::EMPTY;
+    let mut small: PreparedFixed = PreparedFixed::EMPTY;
     small.prepare(&base_scene(), 32, 32).unwrap();
     assert_eq!(
         small.prepare(&tiny, 32, 32),
@@ -276,8 +276,8 @@ fn frame_of<R: Render>(r: &R) -> Vec<Raw> {
     frame(r)
 }
 
-fn base_scene() -> Scene<4, 2> {
-    let mut s: Scene<4, 2> = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+fn base_scene() -> Scene {
+    let mut s: Scene = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
     s.add_sphere(Sphere {
         center: Vec3::new(0.0, 0.0, 0.0),
         radius: 1.0,
@@ -296,7 +296,7 @@ fn camera() -> Camera {
     }
 }
 
-fn refused(scene: &Scene<4, 2>, w: u32, h: u32) -> Option<(Item, &'static str)> {
+fn refused(scene: &Scene, w: u32, h: u32) -> Option<(Item, &'static str)> {
     match PreparedFixed::new(scene, w, h) {
         Err(RenderError::OutOfFixedRange { item, field, .. }) => Some((item, field)),
         Err(e) => panic!("unexpected error {e}"),
@@ -320,7 +320,7 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
     assert_eq!(refused(&s, 32, 32), Some((Item::Sphere(1), "radius")));
 
     // The same ratio is fine at any absolute size: scaling is by powers of two.
-    let mut s: Scene<4, 2> = Scene::new(
+    let mut s: Scene = Scene::new(
         Camera {
             position: Vec3::new(0.0, 0.0, 1.0e5),
             ..camera()
@@ -337,7 +337,7 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
     assert_eq!(refused(&s, 32, 32), None);
 
     // A field of view (or aspect ratio) whose image plane is wider than ±127.
-    let mut s: Scene<4, 2> = Scene::new(
+    let mut s: Scene = Scene::new(
         Camera {
             vfov_degrees: 179.9,
             ..camera()
@@ -450,7 +450,7 @@ fn scenes_that_do_not_fit_are_refused_naming_the_field() {
 #[test]
 fn a_huge_floor_is_named_in_the_refusal() {
     let on_floor = |floor: f32| {
-        let mut s: Scene<4, 2> = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
+        let mut s: Scene = Scene::new(camera(), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
         s.add_sphere(Sphere {
             center: Vec3::new(0.0, -floor, 0.0),
             radius: floor,

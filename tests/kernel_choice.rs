@@ -35,20 +35,14 @@ fn the_float_widths_agree_and_every_reason_names_an_item() {
     let scenes = common::random_scenes_all_models(32, 0x6b65_726e);
     let mut general = 0;
     for (n, scene) in scenes.iter().enumerate() {
-        let scalar = Prepared::<Scalar, 8, 4>::new(scene, 48, 32)
-            .unwrap()
-            .kernel();
-        let simd4 = Prepared::<Simd4, 8, 4>::new(scene, 48, 32)
-            .unwrap()
-            .kernel();
-        let simd8 = Prepared::<Simd8, 8, 4>::new(scene, 48, 32)
-            .unwrap()
-            .kernel();
+        let scalar = Prepared::<Scalar>::new(scene, 48, 32).unwrap().kernel();
+        let simd4 = Prepared::<Simd4>::new(scene, 48, 32).unwrap().kernel();
+        let simd8 = Prepared::<Simd8>::new(scene, 48, 32).unwrap().kernel();
         assert_eq!(simd4, scalar, "random scene {n}");
         assert_eq!(simd8, scalar, "random scene {n}");
         assert_reason_exists(scene, scalar);
         // The fixed path may refuse a random scene (a number out of its formats).
-        if let Ok(fixed) = PreparedFixed::<8, 4>::new(scene, 48, 32) {
+        if let Ok(fixed) = PreparedFixed::new(scene, 48, 32) {
             assert_reason_exists(scene, fixed.kernel());
         }
         general += usize::from(scalar != Kernel::Narrow);

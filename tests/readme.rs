@@ -27,7 +27,7 @@ fn the_highlight_is_never_tinted_by_the_albedo() {
         Model::NormalizedPhong(specular),
         Model::NormalizedBlinnPhong(specular),
     ] {
-        let mut scene: Scene<1, 1> =
+        let mut scene: Scene =
             Scene::new(grey_box_camera(6.0, 40.0), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
         let material = Material {
             albedo: LinearRgb::new(1.0, 0.0, 0.0),
@@ -51,7 +51,7 @@ fn the_highlight_is_never_tinted_by_the_albedo() {
             })
             .unwrap();
         let (w, h) = (64, 48);
-        let scalar: Vec<LinearRgb> = frame(&Prepared::<Scalar, 1, 1>::new(&scene, w, h).unwrap());
+        let scalar: Vec<LinearRgb> = frame(&Prepared::<Scalar>::new(&scene, w, h).unwrap());
         let reference = reference_frame(&scene, w, h);
         for (i, (p, q)) in scalar.iter().zip(&reference).enumerate() {
             assert_eq!(p.g, p.b, "{model:?}: pixel {i}: {p:?}");
@@ -76,7 +76,7 @@ fn the_highlight_is_never_tinted_by_the_albedo() {
 fn a_point_light_delivers_colour_times_intensity_over_four_pi_r_squared() {
     let (albedo, kd, color, intensity) = ([0.9, 0.6, 0.3], 0.8, [1.0, 0.5, 0.25], 10.0);
     for light_z in [1.5f32, 2.0, 3.0, 5.0] {
-        let mut scene: Scene<1, 1> =
+        let mut scene: Scene =
             Scene::new(grey_box_camera(10.0, 30.0), LinearRgb::new(0.0, 0.0, 0.0)).unwrap();
         scene
             .add_sphere(Sphere {
@@ -106,7 +106,7 @@ fn a_point_light_delivers_colour_times_intensity_over_four_pi_r_squared() {
                     / (4.0 * core::f64::consts::PI * r * r)
             })
             .collect();
-        let scalar: Vec<LinearRgb> = frame(&Prepared::<Scalar, 1, 1>::new(&scene, 1, 1).unwrap());
+        let scalar: Vec<LinearRgb> = frame(&Prepared::<Scalar>::new(&scene, 1, 1).unwrap());
         let got = [scalar[0].r, scalar[0].g, scalar[0].b];
         let reference = reference_frame(&scene, 1, 1)[0].color;
         for c in 0..3 {

@@ -31,7 +31,7 @@ fn scalar_matches_reference_on_64_random_scenes() {
     let mut worst_differ = 0.0f64;
     for (i, scene) in random_scenes(64, 0x5eed_0001).iter().enumerate() {
         let reference = reference_frame(scene, w, h);
-        let frame = Prepared::<Scalar, 8, 4>::new(scene, w, h).unwrap();
+        let frame = Prepared::<Scalar>::new(scene, w, h).unwrap();
         let a = agreement(&frame, &reference);
         assert!(a.max_levels <= 1, "scene {i}: {a:?}\n{scene:?}");
         assert!(
@@ -51,7 +51,7 @@ fn random_scenes_exercise_hits_shadows_and_both_models() {
     let (mut hit, mut shadowed, mut total) = (0usize, 0usize, 0usize);
     let scenes = random_scenes(64, 0x5eed_0001);
     for scene in &scenes {
-        let frame = Prepared::<Scalar, 8, 4>::new(scene, w, h).unwrap();
+        let frame = Prepared::<Scalar>::new(scene, w, h).unwrap();
         let hits: Vec<HitRecord> = common::frame(&frame);
         total += hits.len();
         hit += hits.iter().filter(|r| r.sphere.is_some()).count();

@@ -509,22 +509,22 @@ fn errors_name_the_item_and_field_in_their_message() {
 
 #[test]
 fn render_sizes_and_buffers_are_checked() {
-    let sc = scene();
+    let sc: Scene = Scene::new(camera(), LinearRgb::new(0.1, 0.2, 0.3)).unwrap();
     assert_eq!(
-        Prepared::<Scalar, 2, 2>::new(&sc, 0, 10).unwrap_err(),
+        Prepared::<Scalar>::new(&sc, 0, 10).unwrap_err(),
         RenderError::BadSize {
             width: 0,
             height: 10
         }
     );
     assert_eq!(
-        Prepared::<Scalar, 2, 2>::new(&sc, 10, 70_000).unwrap_err(),
+        Prepared::<Scalar>::new(&sc, 10, 70_000).unwrap_err(),
         RenderError::BadSize {
             width: 10,
             height: 70_000
         }
     );
-    let frame = Prepared::<Scalar, 2, 2>::new(&sc, 10, 4).unwrap();
+    let frame = Prepared::<Scalar>::new(&sc, 10, 4).unwrap();
     let mut short = [Rgb888::default(); 9];
     assert_eq!(
         frame.render_line(0, &mut short),

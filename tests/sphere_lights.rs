@@ -27,7 +27,7 @@ const BALL: Vec3 = Vec3 {
 
 /// A ball above a floor (a large sphere), lit by one light of radius `radius` above them;
 /// `ball` false leaves the ball out. The ball's material is `ball_material`.
-fn scene(radius: f32, ball: bool, ball_material: Material) -> Scene<2, 1> {
+fn scene(radius: f32, ball: bool, ball_material: Material) -> Scene {
     let camera = Camera {
         position: Vec3::new(0.0, 2.5, 8.0),
         look_at: Vec3::new(0.0, 0.0, 0.0),
@@ -87,7 +87,7 @@ fn shiny_ball() -> Material {
     }
 }
 
-fn frame(scene: &Scene<2, 1>, strata: usize) -> Vec<RefPixel> {
+fn frame(scene: &Scene, strata: usize) -> Vec<RefPixel> {
     let mut out = Vec::new();
     for y in 0..H {
         for x in 0..W {
@@ -98,7 +98,7 @@ fn frame(scene: &Scene<2, 1>, strata: usize) -> Vec<RefPixel> {
 }
 
 /// The unit normal where the primary ray of pixel `(x, y)` meets the ball, if it does.
-fn ball_normal(scene: &Scene<2, 1>, x: u32, y: u32) -> Option<[f64; 3]> {
+fn ball_normal(scene: &Scene, x: u32, y: u32) -> Option<[f64; 3]> {
     let c = scene.camera();
     let sub = |a: Vec3, b: Vec3| [(a.x - b.x) as f64, (a.y - b.y) as f64, (a.z - b.z) as f64];
     let dot = |a: [f64; 3], b: [f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
@@ -303,7 +303,7 @@ fn every_path_takes_a_sphere_light_with_the_feature_and_radius_zero_without() {
         } else {
             assert_eq!(fixed, Some(RenderError::SphereLight { light: 0 }));
         }
-        assert_eq!(Prepared::<Scalar, 2, 1>::new(&area, W, H).err(), None);
+        assert_eq!(Prepared::<Scalar>::new(&area, W, H).err(), None);
     }
     let message = RenderError::SphereLight { light: 0 }.to_string();
     assert!(
@@ -311,7 +311,7 @@ fn every_path_takes_a_sphere_light_with_the_feature_and_radius_zero_without() {
         "{message}"
     );
     let point = scene(0.0, true, diffuse_ball());
-    assert!(Prepared::<Scalar, 2, 1>::new(&point, W, H).is_ok());
+    assert!(Prepared::<Scalar>::new(&point, W, H).is_ok());
     assert!(PreparedFixed::new(&point, W, H).is_ok());
 }
 
@@ -351,14 +351,14 @@ mod float_paths {
     }
 
     /// The 8-bit frame and hit records of `path` for `scene`.
-    fn render(path: Path, s: &Scene<8, 2>) -> (Vec<Rgb888>, Vec<HitRecord>) {
+    fn render(path: Path, s: &Scene) -> (Vec<Rgb888>, Vec<HitRecord>) {
         match path {
             Path::Scalar => {
-                let p = Prepared::<Scalar, 8, 2>::new(s, RW, RH).unwrap();
+                let p = Prepared::<Scalar>::new(s, RW, RH).unwrap();
                 (frame(&p), frame(&p))
             }
             Path::Fixed => {
-                let p = PreparedFixed::<8, 2>::new(s, RW, RH).unwrap();
+                let p = PreparedFixed::new(s, RW, RH).unwrap();
                 (frame(&p), frame(&p))
             }
         }
@@ -479,8 +479,8 @@ mod float_paths {
             }
             lit += 1;
             let (Ok(fixed), Ok(scalar)) = (
-                PreparedFixed::<8, 4>::new(&scene, w, h),
-                Prepared::<Scalar, 8, 4>::new(&scene, w, h),
+                PreparedFixed::new(&scene, w, h),
+                Prepared::<Scalar>::new(&scene, w, h),
             ) else {
                 panic!("scene {i} does not prepare");
             };
@@ -632,7 +632,7 @@ mod float_paths {
     fn penumbra(factor: f32) -> usize {
         let lit = |radius: f32| {
             let s = spheres_in_a_row(radius).unwrap();
-            let p = Prepared::<Scalar, 8, 2>::new(&s, RW, RH).unwrap();
+            let p = Prepared::<Scalar>::new(&s, RW, RH).unwrap();
             let colors: Vec<LinearRgb> = frame(&p);
             let hits: Vec<HitRecord> = frame(&p);
             (colors, hits)
@@ -640,17 +640,17 @@ mod float_paths {
         let (with, hits) = lit(factor * ROW_RADIUS);
         // The same frame with the light's power off: what the distant light alone gives.
         let s = spheres_in_a_row(factor * ROW_RADIUS).unwrap();
-        let mut dark = Scene::<8, 2>::new(*s.camera(), s.background()).unwrap();
+        let mut dark = Scene::new(*s.camera(), s.background()).unwrap();
         for sphere in s.spheres() {
             dark.add_sphere(*sphere).unwrap();
         }
         dark.add_light(s.lights()[1]).unwrap();
-        let base: Vec<LinearRgb> = frame(&Prepared::<Scalar, 8, 2>::new(&dark, RW, RH).unwrap());
+        let base: Vec<LinearRgb> = frame(&Prepared::<Scalar>::new(&dark, RW, RH).unwrap());
         // Unshadowed light on the floor: the floor alone under the same lights.
-        let mut floor = Scene::<8, 2>::new(*s.camera(), s.background()).unwrap();
+        let mut floor = Scene::new(*s.camera(), s.background()).unwrap();
         floor.add_sphere(s.spheres()[0]).unwrap();
         floor.add_light(s.lights()[0]).unwrap();
-        let open: Vec<LinearRgb> = frame(&Prepared::<Scalar, 8, 2>::new(&floor, RW, RH).unwrap());
+        let open: Vec<LinearRgb> = frame(&Prepared::<Scalar>::new(&floor, RW, RH).unwrap());
         (0..with.len())
             .filter(|&i| hits[i].sphere == Some(0) && open[i].r > 1e-3)
             .filter(|&i| {
@@ -717,7 +717,7 @@ mod float_paths {
     /// Ball pixels whose specular term exceeds 1%, on the scalar path.
     fn highlight(radius: f32) -> usize {
         let s = scene(radius, true, shiny_ball());
-        let p = Prepared::<Scalar, 2, 1>::new(&s, W, H).unwrap();
+        let p = Prepared::<Scalar>::new(&s, W, H).unwrap();
         let colors: Vec<LinearRgb> = frame(&p);
         let hits: Vec<HitRecord> = frame(&p);
         colors
