@@ -1,11 +1,11 @@
 //! Renders one preset frame a given number of times on one path, single thread, and prints
 //! the frame's covered pixels and kernel: a fixed workload for instruction counts on the
-//! host, where criterion's times are too noisy to compare kernels by.
+//! host, where criterion's times are too noisy to compare kernels by. A bench target without
+//! criterion's harness, so that the test command does not build it:
 //!
 //! ```sh
-//! cargo build --release --example matrix_frames
-//! valgrind --tool=callgrind --callgrind-out-file=/tmp/cg.out \
-//!     target/release/examples/matrix_frames floor simd8 11
+//! exe=$(cargo bench --bench matrix_frames --no-run 2>&1 | sed -n 's/.*Executable .*(\(.*\))$/\1/p')
+//! valgrind --tool=callgrind --callgrind-out-file=/tmp/cg.out "$exe" floor simd8 11
 //! ```
 //!
 //! The scene is `floor`, `lamp` or `three-lights` (the scene matrix, at `MATRIX_SIZE`) or
@@ -84,7 +84,11 @@ fn render<const S: usize, const L: usize>(
 }
 
 fn main() -> ExitCode {
-    let args: Vec<String> = std::env::args().skip(1).collect();
+    // `cargo bench` appends `--bench` to a bench target's arguments.
+    let args: Vec<String> = std::env::args()
+        .skip(1)
+        .filter(|arg| arg != "--bench")
+        .collect();
     let (scene, path, frames) = match &args[..] {
         [scene, path, frames] => (scene.as_str(), path.as_str(), frames.parse().ok()),
         _ => ("", "", None),
