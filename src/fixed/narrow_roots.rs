@@ -173,8 +173,8 @@ fn even_leading_zeros_high(x: u32) -> u32 {
 /// [`even_leading_zeros`] for the arguments outside the range a caller's comparisons
 /// cover. Out of line and cold on ARMv6-M, so that the pixel loops, which inline those
 /// comparisons at each of their copies, share one search there (its flash); inline
-/// elsewhere, where the call cost the M4F's and RV32's point-lit frames 1 to 3%
-/// (`docs/performance.md`, "Choices measured").
+/// elsewhere, where the call costs the M4F's and RV32's point-lit frames more than the
+/// flash it saves (`docs/performance.md`, "Choices measured").
 #[cfg_attr(shadeline_short_mul, inline(never), cold)]
 #[cfg_attr(not(shadeline_short_mul), inline(always))]
 fn outside_range(x: u32) -> u32 {

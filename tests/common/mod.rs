@@ -8,9 +8,8 @@ use proptest::test_runner::{Config, RngSeed, TestRunner};
 use shadeline::reference::{self, RefPixel};
 use shadeline::*;
 
-/// The random scenes' type: the default capacities, as the presets have. The tests keep to
-/// a few capacities (this one, `MatrixScene`'s and those a test is about), because each
-/// capacity the test binary renders at compiles every kernel again.
+/// The random scenes' type: the default capacities, as the presets have (why the tests
+/// keep to few capacities: `tests/all.rs`).
 pub type TestScene = Scene;
 
 fn vec3(range: f32) -> impl Strategy<Value = Vec3> {
