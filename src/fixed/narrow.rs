@@ -171,6 +171,9 @@ pub(crate) enum PointSeen {
     /// The light's diffuse and specular sums (U16F16 per channel, before `kd·albedo` and
     /// `ks`).
     Lit([u32; 3], [u32; 3]),
+    /// The light's diffuse sum alone: its specular sum is 0 (a Lambert sphere, or a pixel
+    /// outside the lobe's cutoff).
+    Matte([u32; 3]),
     /// The sphere's own shadow.
     Blocked,
     /// The light needs the precise path at this pixel (`precise_light`).
@@ -320,6 +323,15 @@ impl Sums {
         self.diffuse = each3(|c| self.diffuse[c].saturating_add(diffuse[c]));
         self.specular = each3(|c| self.specular[c].saturating_add(specular[c]));
         (self.lit, self.glossy) = (true, true);
+    }
+
+    /// Adds a light's diffuse sum, for a light whose specular sum is 0: `combine` then takes
+    /// no `ks` product unless another light's lobe needs it.
+    #[inline(always)]
+    #[cfg_attr(not(feature = "narrow-precise"), allow(dead_code))]
+    fn add_diffuse(&mut self, diffuse: [u32; 3]) {
+        self.diffuse = each3(|c| self.diffuse[c].saturating_add(diffuse[c]));
+        self.lit = true;
     }
 
     /// Records light `light_index` as blocked, if hits are recorded.
@@ -653,6 +665,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
                     );
                     match seen {
                         PointSeen::Lit(dif, spec) => sums.add(dif, spec),
+                        PointSeen::Matte(dif) => sums.add_diffuse(dif),
                         _ => sums.shadow(light_index, record_hits),
                     }
                     continue;

@@ -142,8 +142,9 @@ pub(super) fn point_cosines(
 /// `2¹⁶`): the fast form of `exact::arriving`, from the power's top 16 bits.
 #[inline(always)]
 fn fast_arriving(power: &[Exact; 3], (y, shift): (u32, u32)) -> [u32; 3] {
-    let y2 = (y.min(0xffff) * y.min(0xffff)) >> 16; // 1/d² = y2·2^(16 − 2·shift)
-                                                    // power·(1/d²) in units (2³² per raw²) and U16F16: m·2^pe·y2·2^(16 − 2·shift + 48).
+    // 1/d² = y2·2^(16 − 2·shift); power·(1/d²) in units (2³² per raw²) and U16F16:
+    // m·2^pe·y2·2^(16 − 2·shift + 48).
+    let y2 = (y.min(0xffff) * y.min(0xffff)) >> 16;
     power.map(|p| {
         let m = p.mantissa >> 8;
         shift_u32(m * y2, p.exponent + 8 + 64 - 2 * shift as i32)
@@ -191,7 +192,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         }
         #[cfg(test)]
         self.assert_separated_point_clear(surface, (sphere, ns, light), light_index, d, (g, dl));
-        let (h, trusted) = fast_h(sphere.blinn(), nl, surface.nv, ld);
+        // A cutoff of 0 (a Lambert sphere): no lobe, whatever `h`.
+        let (h, trusted) = if ns.cutoff == 0 {
+            (u32::MAX, true)
+        } else {
+            fast_h(sphere.blinn(), nl, surface.nv, ld)
+        };
         let (lobes, precise) = if h >= ns.cutoff {
             (None, false)
         } else if !trusted {
@@ -230,8 +236,12 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
         } else {
             [0; 3]
         };
-        let lobe = lobes.map_or(0, |(_, lobe)| lobe);
-        PointSeen::Lit(diffuse, arriving.map(|a| scale_q16(a, lobe)))
+        // Outside the lobe's cutoff the specular sum is 0: the pixel's colour is its diffuse
+        // term alone, with no `ks` product.
+        match lobes {
+            Some((_, lobe)) => PointSeen::Lit(diffuse, arriving.map(|a| scale_q16(a, lobe))),
+            None => PointSeen::Matte(diffuse),
+        }
     }
 }
 

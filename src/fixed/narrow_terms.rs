@@ -95,7 +95,7 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// fast point light, [`Self::fast_point`], where it serves), or any light on a sphere of
     /// a normalized model (the fast cosines, the fast shadow rules and [`fast_terms`] for a
     /// distant light where the fast lobe serves); `precise_light` everywhere else.
-    /// [`PointSeen::Lit`] or [`PointSeen::Blocked`].
+    /// [`PointSeen::Lit`], [`PointSeen::Matte`] or [`PointSeen::Blocked`].
     #[inline(always)]
     pub(super) fn point_or_terms_light(
         &self,
