@@ -332,7 +332,32 @@ impl PlanePair {
         reach: f64,
     ) {
         let (d, l) = (self.d, self.l);
-        let minus_n = unit64(d.map(|c| -c));
+        for normal in self.tested_normals(next, s) {
+            // The sphere's centre at 0, the caster's at −Δ; the ray from O along L.
+            let v: [f64; 3] = core::array::from_fn(|j| -d[j] - (self.r + self.eps) * normal[j]);
+            let b = dot64(v, l);
+            let closest2 = if b <= 0.0 {
+                dot64(v, v)
+            } else {
+                dot64(v, v) - b * b
+            };
+            assert!(
+                closest2 > reach * reach,
+                "a ray from N = {normal:?} comes within {reach} of the caster: r {}, rc {}, \
+                 ε {}, Δ {d:?}, L {l:?}",
+                self.r,
+                self.rc,
+                self.eps
+            );
+        }
+    }
+
+    /// The normals of the sphere's pixels that test casters (`N·L ≥ −s`) the assertions
+    /// try: the one nearest `−Δ` (on the limit, turned from `L` toward `−n` as far as it
+    /// goes: the lifted point nearest the caster), then eight random ones.
+    fn tested_normals(&self, next: &mut impl FnMut(f64, f64) -> f64, s: f64) -> [[f64; 3]; 9] {
+        let l = self.l;
+        let minus_n = unit64(self.d.map(|c| -c));
         let away = unit64(core::array::from_fn(|j| {
             minus_n[j] - dot64(minus_n, l) * l[j]
         }));
@@ -346,19 +371,42 @@ impl PlanePair {
                 }
             };
         }
-        for normal in normals {
-            // The sphere's centre at 0, the caster's at −Δ; the ray from O along L.
-            let v: [f64; 3] = core::array::from_fn(|j| -d[j] - (self.r + self.eps) * normal[j]);
-            let b = dot64(v, l);
-            let closest2 = if b <= 0.0 {
-                dot64(v, v)
-            } else {
-                dot64(v, v) - b * b
-            };
+        normals
+    }
+
+    /// Whether every shadow ray from a lifted point whose `N·L` passes the own-shadow limit
+    /// (as [`Self::clearance`]) moves away from the caster's centre and, where it starts
+    /// inside the caster, leaves it within `ε`: at the least `b = (O − C_k)·L` and the
+    /// least `|O − C_k|` over those points, each a bound for all of them.
+    pub(crate) fn recedes(&self) -> bool {
+        let (len, delta) = self.len_and_delta();
+        let lift = self.r + self.eps;
+        let s = (self.eps * (2.0 * self.r + self.eps)).sqrt() / lift;
+        if delta <= s {
+            return false;
+        }
+        let b = len * delta - lift * s;
+        let phi = delta.asin() - s.asin();
+        let x = ((len - lift * phi.cos()).powi(2) + (lift * phi.sin()).powi(2)).sqrt();
+        b >= 0.0 && (self.rc - x) * (self.rc + x) <= self.eps * (2.0 * b + self.eps)
+    }
+
+    /// Asserts that every shadow ray along `l` from a lifted point `(r + ε)·N` of the
+    /// sphere with `N·L ≥ −s` moves away from the caster's centre (`b = (O − C_k)·L ≥ 0`)
+    /// and, where it starts inside the caster, leaves it within `ε`
+    /// (`r_c² − |O − C_k|² ≤ ε·(2b + ε)`, the fixed path's exact ray's rule): at the
+    /// lifted point nearest the caster and at eight random ones.
+    pub(crate) fn assert_rays_recede(&self, next: &mut impl FnMut(f64, f64) -> f64, s: f64) {
+        let (d, l) = (self.d, self.l);
+        for normal in self.tested_normals(next, s) {
+            // The sphere's centre at 0, the caster's at −Δ: o = O − C_k.
+            let o: [f64; 3] = core::array::from_fn(|j| d[j] + (self.r + self.eps) * normal[j]);
+            let b = dot64(o, l);
+            let inside = self.rc * self.rc - dot64(o, o);
             assert!(
-                closest2 > reach * reach,
-                "a ray from N = {normal:?} comes within {reach} of the caster: r {}, rc {}, \
-                 ε {}, Δ {d:?}, L {l:?}",
+                b >= 0.0 && inside <= self.eps * (2.0 * b + self.eps),
+                "a ray from N = {normal:?} meets the caster: b {b}, r_c² − |O − C_k|² {inside}, \
+                 r {}, rc {}, ε {}, Δ {d:?}, L {l:?}",
                 self.r,
                 self.rc,
                 self.eps

@@ -1294,6 +1294,50 @@ pub(super) mod tests {
         (ca == cb && ha == hb).then_some(ha)
     }
 
+    /// The floor of the `floor` and `three-lights` presets leaves the casters of the spheres
+    /// resting on it for every distant light (under the fill light, 24° to 27° above the
+    /// floor, by the receding rule of `narrow_caster_prepare`, the plane's not holding
+    /// there), and that changes no pixel: the frame is the same with the floor back in
+    /// each of those masks and no caster filter or shadow rows to skip its tests.
+    #[test]
+    fn the_matrix_floors_leave_the_resting_spheres_casters() {
+        let (w, h) = (160u32, 120u32);
+        for scene in [crate::floor(), crate::three_lights()] {
+            let scene = scene.unwrap();
+            let with = PreparedFixed::new(&scene, w, h).unwrap();
+            assert!(with.narrow.is_some());
+            let floor = (0..with.spheres.len())
+                .max_by_key(|&i| with.spheres[i].radius.to_bits())
+                .unwrap();
+            let mut without = with.clone();
+            let mut left_out = 0;
+            for (i, lights) in without.narrow_lights.iter_mut().enumerate() {
+                if i == floor {
+                    continue;
+                }
+                for (l, light) in lights.iter_mut().enumerate().take(with.lights.len()) {
+                    if !matches!(with.lights[l], FixedLight::Distant { .. }) {
+                        continue;
+                    }
+                    assert_eq!(light.casters & (1 << floor), 0, "sphere {i}, light {l}");
+                    left_out += 1;
+                    light.casters |= 1 << floor;
+                    (light.ahead, light.reach) = (i32::MAX, u32::MAX);
+                }
+            }
+            for s in without.spheres.iter_mut() {
+                if let Some(n) = s.narrow.as_mut() {
+                    n.shadows = (0, h as u16);
+                }
+            }
+            assert_eq!(left_out, 8, "four spheres, two distant lights");
+            assert!(
+                same_frames(&with, &without, (w, h)).is_some(),
+                "the floor back among the casters changed a pixel"
+            );
+        }
+    }
+
     /// The quick caster test only clears casters the exact test finds clear: on random
     /// frames of spheres resting on floor spheres of radius 20 to 150 (whose shadows fall
     /// across the floor, and whose floor is a caster of each) and of spheres close enough

@@ -9,8 +9,11 @@
 //! A caster leaves a sphere's mask where the kernel could never find it blocking: too far
 //! from the rays, or (feature `shadow-rows`) on the far side of a plane from every ray the
 //! sphere's lit pixels cast ([`crate::caster_plane`], with this path's margin in
-//! [`plane_clears`]). The crate's tests assert, at every pixel they render, that no caster
-//! left out by the plane blocks the ray the kernel would cast.
+//! [`plane_clears`]), or, toward a distant light, behind every such ray, which moves away
+//! from its centre and leaves it within `ε` where it starts inside it ([`recedes`]: a floor
+//! under a sphere resting on it, lit from too low for the plane). The crate's tests assert,
+//! at every pixel they render, that no caster these rules leave out blocks the ray the
+//! kernel would cast.
 
 use super::mul::{dot_ii, mul_ii, mul_iu, mul_uu};
 use super::prepare::{FixedLight, FixedSphere, PreparedFixed};
@@ -279,18 +282,30 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 /// Whether a caster of radius `rk` (raw) lies beyond a plane that every shadow ray toward a
 /// distant light from the pixels of a sphere of radius `r` keeps off: `len2` is `|Δ|²` and
 /// `along` is `Δ·L·2³⁰` (raw), with `Δ` the sphere's centre less the caster's and `L` the
-/// unit vector toward the light. [`plane_clears`] with `δ = Δ·L/|Δ|` and the fast `N·L`'s
-/// error (`2⁻¹²`) widened to `2⁻¹⁰`.
+/// unit vector toward the light. [`plane_clears`] or [`recedes`], with `δ = Δ·L/|Δ|` and
+/// the fast `N·L`'s error (`2⁻¹²`) widened to `2⁻¹⁰`.
 ///
 /// This is what takes a floor sphere out of the casters of a sphere resting on it under a
-/// light from above, which otherwise meets the caster tests of every lit pixel.
+/// light from above, which otherwise meets the caster tests of every lit pixel: the plane
+/// where the light is high, the receding rays where it is lower.
 fn separated(radii: (i64, i64, i64), len2: i64, along: i64) -> bool {
+    distant_pair(len2, along).is_some_and(|(len, delta)| {
+        plane_clears(radii, len, delta, DISTANT_WIDEN) || recedes(radii, len, delta, DISTANT_WIDEN)
+    })
+}
+
+/// The fast `N·L`'s error (`2⁻¹²`) widened, for [`separated`]'s own-shadow limit.
+const DISTANT_WIDEN: f32 = 1.0 / 1024.0;
+
+/// `|Δ|` and `δ = Δ·L/|Δ|` in `f32` from `len2 = |Δ|²` and `along = Δ·L·2³⁰` (raw), where
+/// the rules of [`separated`] can apply: with the plane rule built in, and the caster
+/// behind the sphere along the light.
+fn distant_pair(len2: i64, along: i64) -> Option<(f32, f32)> {
     if !PLANE_RULE || along <= 0 || len2 <= 0 {
-        return false;
+        return None;
     }
     let len = libm::sqrtf(len2 as f32);
-    let delta = along as f32 / (len * (1u64 << 30) as f32);
-    plane_clears(radii, len, delta, 1.0 / 1024.0)
+    Some((len, along as f32 / (len * (1u64 << 30) as f32)))
 }
 
 /// [`separated`] for a point light at `q = P − C` (raw) from the sphere's centre, `d` being
@@ -342,6 +357,55 @@ fn plane_clears((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32)
     let delta = delta - 1.0 / 1_048_576.0;
     crate::caster_plane::clearance((r, rk, eps), len, delta, widen)
         .is_some_and(|c| c - slack > margin)
+}
+
+/// Whether every shadow ray toward a distant light from the pixels of a sphere of radius
+/// `r` that test casters moves away from the centre of a caster of radius `rk` at `|Δ| =
+/// len` (raw), and, where it starts inside the caster, leaves it within `ε`: then the
+/// exact ray ([`PreparedFixed::blocked_along`]) never finds the caster blocking, although
+/// the plane may not keep it off ([`plane_clears`]). `δ` and `widen` as there.
+///
+/// This is a floor under a sphere resting on it, lit from low enough that the lifted
+/// points near the contact, inside the floor by up to `ε`, are not all in the sphere's own
+/// shadow. Over the pixels that test casters (`N·L ≥ −s`, `s` the own-shadow limit widened
+/// by `widen`), with `O = C + (r + ε)·N` and `C_k` the caster's centre:
+///
+/// - `b = (O − C_k)·L = |Δ|·δ + (r + ε)·N·L ≥ |Δ|·δ − (r + ε)·s`, which must be at least 0
+///   after the margin of the exact `b`'s rounding: the ray moves away from the centre;
+/// - `N` lies at least `φ = asin δ − asin s` from `−Δ/|Δ|` (as in
+///   [`crate::caster_plane`]), so `|O − C_k| ≥ x = |Δ − (r + ε)·u|` for a unit `u` at `φ`
+///   from `Δ`, less the lifted point's error (the normal's, `2⁻¹¹` of the lift);
+/// - the exact ray finds it blocking only where `r_k² − |O − C_k|² > ε·(2b + ε)`, and
+///   `(r_k − x)·(r_k + x)` is at most the left side's largest value, `ε·(2b + ε)` at least
+///   the right side's least: the first kept below the second by `2⁻¹⁰` of it.
+///
+/// In `f32`, as [`plane_clears`]; its roundings are covered by the same slack on `x`.
+fn recedes((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32) -> bool {
+    let (r, rk, eps) = (r as f32, rk as f32, eps as f32);
+    let lift = r + eps;
+    let s = libm::sqrtf(eps * (2.0 * r + eps)) / lift + widen;
+    let delta = delta - 1.0 / 1_048_576.0;
+    if !(delta > s && delta <= 1.0 && s < 1.0) {
+        return false;
+    }
+    // The exact b is rounded down to a raw unit; the light's direction is within 2⁻²⁹ of
+    // unit length and the lifted point within 2⁻¹¹ of the lift: 256 raw and the point's
+    // error cover them many times.
+    let point_error = lift / 2048.0 + 4.0;
+    let b = len * delta - lift * s - point_error - 256.0;
+    if b.is_nan() || b < 0.0 {
+        return false;
+    }
+    // cos φ and sin φ, φ = asin δ − asin s.
+    let (cd, cs) = (libm::sqrtf(1.0 - delta * delta), libm::sqrtf(1.0 - s * s));
+    let (cos, sin) = (cd * cs + delta * s, delta * cs - s * cd);
+    let near = len - lift * cos;
+    let slack = lift / 4096.0 + len / 65536.0 + 256.0;
+    let x = libm::sqrtf(near * near + (lift * sin) * (lift * sin)) - point_error - slack;
+    if x >= rk {
+        return true;
+    }
+    (rk - x) * (rk + x) * (1.0 + 1.0 / 1024.0) < eps * (2.0 * b + eps)
 }
 
 /// Whether the casters' masks leave out what a plane keeps off ([`plane_clears`]): with
@@ -480,7 +544,8 @@ mod tests {
                         l,
                     };
                     assert!(
-                        along > 0.0 && pair.clearance().is_some_and(|c| c > 0.0),
+                        along > 0.0
+                            && (pair.clearance().is_some_and(|c| c > 0.0) || pair.recedes()),
                         "sphere {k} left out of {i}'s casters at {dist} raw"
                     );
                     separated_near += 1;
@@ -521,8 +586,9 @@ mod tests {
         );
     }
 
-    /// [`separated`] against the geometry in `f64`, over random pairs of spheres (the caster
-    /// up to 200 times the radius, a floor) and lights: wherever it leaves a caster out, no
+    /// The plane rule of [`separated`] ([`plane_clears`]) against the geometry in `f64`,
+    /// over random pairs of spheres (the caster up to 200 times the radius, a floor) and
+    /// lights: wherever it leaves a caster out, no
     /// shadow ray from a lifted point of the sphere that tests casters (`N·L` at or above
     /// minus the own-shadow limit, widened by `2⁻¹¹`) passes within the caster's radius, at
     /// the worst such point and at random ones; and it leaves out most pairs whose exact
@@ -541,7 +607,10 @@ mod tests {
             let len2: i64 = d_raw.iter().map(|c| c * c).sum();
             let is_clear = pair.clearance().is_some_and(|c| c > 0.1 * r);
             clear += is_clear as u32;
-            if !separated((r as i64, rc as i64, eps as i64), len2, along) {
+            let radii = (r as i64, rc as i64, eps as i64);
+            let plane = distant_pair(len2, along)
+                .is_some_and(|(len, delta)| plane_clears(radii, len, delta, DISTANT_WIDEN));
+            if !plane {
                 continue;
             }
             clear_dropped += is_clear as u32;
@@ -557,6 +626,58 @@ mod tests {
         assert!(
             dropped > 3000 && clear_dropped * 10 > clear * 8,
             "{dropped} left out; {clear_dropped} of {clear} clear pairs"
+        );
+    }
+
+    /// The receding rule of [`separated`] ([`recedes`]) against the geometry in `f64`, over
+    /// random pairs as above: wherever it leaves a caster out, every shadow ray from a
+    /// lifted point of the sphere that tests casters (`N·L` at or above minus the
+    /// own-shadow limit, widened by `2⁻¹¹`) moves away from the caster's centre and leaves
+    /// it within `ε` where it starts inside it, at the lifted point nearest the caster and
+    /// at random ones; and it leaves out pairs that the plane keeps in (touching ones, lit
+    /// from low), and most of the pairs that recede in `f64`.
+    #[test]
+    fn receding_casters_are_never_met() {
+        extern crate std;
+        use crate::test_scenes::{uniform64, PlanePair};
+        let mut next = uniform64(0x9e37_79b9_7f4a_7c15);
+        let (mut dropped, mut beyond_plane, mut exact, mut exact_dropped) = (0, 0, 0, 0);
+        for _ in 0..40_000 {
+            let mut pair = PlanePair::random(&mut next, 65536.0);
+            // Half of the pairs touching, as a sphere resting on another.
+            if next(0.0, 1.0) < 0.5 {
+                let len = (pair.d.iter().map(|c| c * c).sum::<f64>()).sqrt();
+                let apart = pair.r + pair.rc;
+                pair.d = pair.d.map(|c| (c * apart / len).round());
+            }
+            let PlanePair { r, rc, eps, d, l } = pair;
+            let l_q30 = l.map(|c| (c * (1u64 << 30) as f64).round() as i64);
+            let d_raw = d.map(|c| c as i64);
+            let along: i64 = (0..3).map(|j| d_raw[j] * l_q30[j]).sum();
+            let len2: i64 = d_raw.iter().map(|c| c * c).sum();
+            let radii = (r as i64, rc as i64, eps as i64);
+            let recede = pair.recedes();
+            exact += recede as u32;
+            let Some((len, delta)) = distant_pair(len2, along) else {
+                continue;
+            };
+            if !recedes(radii, len, delta, DISTANT_WIDEN) {
+                continue;
+            }
+            dropped += 1;
+            exact_dropped += recede as u32;
+            beyond_plane += !plane_clears(radii, len, delta, DISTANT_WIDEN) as u32;
+            let s = (eps * (2.0 * r + eps)).sqrt() / (r + eps) + 1.0 / 2048.0;
+            pair.assert_rays_recede(&mut next, s);
+        }
+        std::println!(
+            "{dropped} left out, {beyond_plane} of them kept by the plane; \
+             {exact_dropped} of {exact} receding pairs"
+        );
+        assert!(
+            dropped > 3000 && beyond_plane > 100 && exact_dropped * 10 > exact * 8,
+            "{dropped} left out, {beyond_plane} of them kept by the plane; \
+             {exact_dropped} of {exact} receding pairs"
         );
     }
 }
