@@ -363,49 +363,28 @@ fn plane_clears((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32)
 /// `r` that test casters moves away from the centre of a caster of radius `rk` at `|Δ| =
 /// len` (raw), and, where it starts inside the caster, leaves it within `ε`: then the
 /// exact ray ([`PreparedFixed::blocked_along`]) never finds the caster blocking, although
-/// the plane may not keep it off ([`plane_clears`]). `δ` and `widen` as there.
+/// the plane may not keep it off ([`plane_clears`]). `δ` and `widen` as there; the
+/// geometry is [`crate::caster_plane::recession`]'s and
+/// [`crate::caster_plane::leaves_within`]'s.
 ///
 /// This is a floor under a sphere resting on it, lit from low enough that the lifted
 /// points near the contact, inside the floor by up to `ε`, are not all in the sphere's own
-/// shadow. Over the pixels that test casters (`N·L ≥ −s`, `s` the own-shadow limit widened
-/// by `widen`), with `O = C + (r + ε)·N` and `C_k` the caster's centre:
-///
-/// - `b = (O − C_k)·L = |Δ|·δ + (r + ε)·N·L ≥ |Δ|·δ − (r + ε)·s`, which must be at least 0
-///   after the margin of the exact `b`'s rounding: the ray moves away from the centre;
-/// - `N` lies at least `φ = asin δ − asin s` from `−Δ/|Δ|` (as in
-///   [`crate::caster_plane`]), so `|O − C_k| ≥ x = |Δ − (r + ε)·u|` for a unit `u` at `φ`
-///   from `Δ`, less the lifted point's error (the normal's, `2⁻¹¹` of the lift);
-/// - the exact ray finds it blocking only where `r_k² − |O − C_k|² > ε·(2b + ε)`, and
-///   `(r_k − x)·(r_k + x)` is at most the left side's largest value, `ε·(2b + ε)` at least
-///   the right side's least: the first kept below the second by `2⁻¹⁰` of it.
-///
-/// In `f32`, as [`plane_clears`]; its roundings are covered by the same slack on `x`.
+/// shadow. The margins: the exact `b` is rounded down to a raw unit and the light's
+/// direction is within `2⁻²⁹` of unit length (256 raw), and the kernel's lifted point is
+/// within `2⁻¹¹` of the lift of the exact one (the normal's error, doubled); `x` takes the
+/// plane rule's slack besides, for the `f32` roundings. The exact test's own arithmetic is
+/// exact.
 fn recedes((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32) -> bool {
     let (r, rk, eps) = (r as f32, rk as f32, eps as f32);
-    let lift = r + eps;
-    let s = libm::sqrtf(eps * (2.0 * r + eps)) / lift + widen;
     let delta = delta - 1.0 / 1_048_576.0;
-    if !(delta > s && delta <= 1.0 && s < 1.0) {
+    let Some((b, x)) = crate::caster_plane::recession((r, eps), len, delta, widen) else {
         return false;
-    }
-    // The exact b is rounded down to a raw unit; the light's direction is within 2⁻²⁹ of
-    // unit length and the lifted point within 2⁻¹¹ of the lift: 256 raw and the point's
-    // error cover them many times.
+    };
+    let lift = r + eps;
     let point_error = lift / 2048.0 + 4.0;
-    let b = len * delta - lift * s - point_error - 256.0;
-    if b.is_nan() || b < 0.0 {
-        return false;
-    }
-    // cos φ and sin φ, φ = asin δ − asin s.
-    let (cd, cs) = (libm::sqrtf(1.0 - delta * delta), libm::sqrtf(1.0 - s * s));
-    let (cos, sin) = (cd * cs + delta * s, delta * cs - s * cd);
-    let near = len - lift * cos;
     let slack = lift / 4096.0 + len / 65536.0 + 256.0;
-    let x = libm::sqrtf(near * near + (lift * sin) * (lift * sin)) - point_error - slack;
-    if x >= rk {
-        return true;
-    }
-    (rk - x) * (rk + x) * (1.0 + 1.0 / 1024.0) < eps * (2.0 * b + eps)
+    let bounds = (b - point_error - 256.0, x - point_error - slack);
+    crate::caster_plane::leaves_within(rk, eps, bounds, 0.0)
 }
 
 /// Whether the casters' masks leave out what a plane keeps off ([`plane_clears`]): with

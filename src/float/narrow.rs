@@ -905,18 +905,30 @@ mod tests {
     }
 
     /// The caster filter only skips tests that fail: with it opened (every caster of
-    /// [`Scene::shadow_casters`]' mask tested at every pixel, those the plane rule left out
-    /// too) the frames keep every bit, at every lane width. Over random frames of spheres
-    /// near each other and of spheres resting on floors.
+    /// [`Scene::shadow_casters`]' mask tested at every pixel, those the plane and receding
+    /// rules left out too) the frames keep every bit, at every lane width. Over random
+    /// frames of spheres near each other and of spheres resting on floors, and the `floor`
+    /// preset.
     #[test]
     fn the_caster_filter_changes_no_pixel() {
         let (w, h) = (96u32, 72u32);
         let (mut filtered, mut planes) = (0usize, 0usize);
         let mut next = uniform(0x3c6e_f372_fe94_f82b);
         let floors = (0..30).map(|_| crate::test_scenes::random_floor_scene::<8, 4>(&mut next));
+        // The floor preset: its fill light is low enough that the receding rule, not the
+        // plane, leaves the floor out of the resting spheres' casters.
+        let preset = crate::floor().unwrap();
+        let mut matrix_floor = Scene::<8, 4>::new(*preset.camera(), preset.background()).unwrap();
+        for s in preset.spheres() {
+            matrix_floor.add_sphere(*s).unwrap();
+        }
+        for l in preset.lights() {
+            matrix_floor.add_light(*l).unwrap();
+        }
         for scene in random_scenes(0xbb67_ae85_84ca_a73b, 30)
             .into_iter()
             .chain(floors)
+            .chain([matrix_floor])
         {
             let Ok(frame_scalar) = Prepared::<Scalar, 8, 4>::new(&scene, w, h) else {
                 continue;
@@ -964,5 +976,32 @@ mod tests {
             filtered > 10 && planes > 10,
             "the filter narrowed only {filtered} sphere-light pairs, the plane rule {planes}"
         );
+    }
+
+    /// The `floor` preset's floor leaves the casters of the four spheres resting on it for
+    /// both its distant lights: under the key light by the plane rule, under the fill light,
+    /// 24° to 27° above the floor, by the receding rule (`prepare::recedes`).
+    #[test]
+    fn the_floor_presets_floor_leaves_the_casters() {
+        let scene = crate::floor().unwrap();
+        let frame = Prepared::<Scalar, 6, 3>::new(&scene, 160, 120).unwrap();
+        assert!(frame.narrow.is_some());
+        let floor = (0..scene.spheres().len())
+            .max_by(|&a, &b| {
+                scene.spheres()[a]
+                    .radius
+                    .total_cmp(&scene.spheres()[b].radius)
+            })
+            .unwrap();
+        let mut checked = 0;
+        for (i, lights) in frame.narrow_lights.iter().enumerate() {
+            for (k, light) in lights.iter().enumerate().take(scene.lights().len()) {
+                if i != floor {
+                    assert_eq!(light.casters & (1 << floor), 0, "sphere {i}, light {k}");
+                    checked += 1;
+                }
+            }
+        }
+        assert_eq!(checked, 8, "four spheres, two lights");
     }
 }
