@@ -213,7 +213,8 @@ impl<const S: usize, const L: usize> PreparedFixed<S, L> {
 impl<const S: usize, const L: usize> PreparedFixed<S, L> {
     /// The casters of sphere `i` for the point light `light` (its index; as [`NarrowLight`]
     /// holds them): [`Scene::shadow_casters`]' mask, the same spheres the full-width kernel
-    /// tests, less those a plane keeps off every ray toward the light ([`point_separated`]),
+    /// tests, less those a plane keeps off every ray toward the light or that every ray
+    /// recedes from ([`point_separated`]),
     /// and a filter that passes every pixel (`N·L` alone does not bound a ray toward a
     /// point). `None` if the frame has spheres beyond the mask's 32 bits.
     pub(super) fn narrow_point_casters(
@@ -313,7 +314,8 @@ fn distant_pair(len2: i64, along: i64) -> Option<(f32, f32)> {
 /// angle between `Δ` and `q` and `sin β = (r + ε)/|q|`, and the fast point light's `N·L`
 /// error (within `2⁻⁹` where it serves, see `point_fast`) is widened to `2⁻⁸`. Each sine
 /// is rounded up and each cosine down, by more than the `f32` rounding of their square
-/// roots where those lose most (near 1).
+/// roots where those lose most (near 1). Both of [`separated`]'s rules hold with the rays'
+/// directions varying: each needs only a lower bound on `n·L` over them.
 fn point_separated(radii: (i64, i64, i64), d: [i64; 3], q: [i64; 3]) -> bool {
     if !PLANE_RULE {
         return false;
@@ -330,7 +332,8 @@ fn point_separated(radii: (i64, i64, i64), d: [i64; 3], q: [i64; 3]) -> bool {
     let sin_b = lift / q_len * (1.0 + 1.0 / 1_048_576.0);
     let sin_g = libm::sqrtf((1.0 - cos_g * cos_g).max(0.0)) + 1.0 / 2048.0;
     let cos_b = libm::sqrtf((1.0 - sin_b * sin_b).max(0.0)) - 1.0 / 2048.0;
-    plane_clears(radii, len, cos_g * cos_b - sin_g * sin_b, 1.0 / 256.0)
+    let delta = cos_g * cos_b - sin_g * sin_b;
+    plane_clears(radii, len, delta, 1.0 / 256.0) || recedes(radii, len, delta, 1.0 / 256.0)
 }
 
 /// Whether the plane across `Δ` (`|Δ| = len`, raw) keeps a caster of radius `rk` off every
