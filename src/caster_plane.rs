@@ -1,7 +1,7 @@
 //! The two rules both narrow kernels (`src/fixed/narrow_caster_prepare.rs`,
 //! `src/float/prepare.rs`) use to leave a caster out of a sphere's shadow casters toward a
-//! distant light: the geometry, in `f32`, once per frame and pair of spheres. Each path
-//! applies a margin for its own exact ray's rounding, which is why the margins are not here.
+//! light: the geometry, in `f32`, once per frame and pair of spheres. Each path applies a
+//! margin for its own exact ray's rounding, which is why the margins are not here.
 //!
 //! With `Δ` the sphere's centre less the caster's, `n = Δ/|Δ|` and `δ` a lower bound on
 //! `n·L` over the rays (`L` each ray's unit direction toward the light, `δ > 0`), the plane

@@ -9,9 +9,9 @@
 //! A caster leaves a sphere's mask where the kernel could never find it blocking: too far
 //! from the rays, or (feature `shadow-rows`) on the far side of a plane from every ray the
 //! sphere's lit pixels cast ([`crate::caster_plane`], with this path's margin in
-//! [`plane_clears`]), or, toward a distant light, behind every such ray, which moves away
-//! from its centre and leaves it within `ε` where it starts inside it ([`recedes`]: a floor
-//! under a sphere resting on it, lit from too low for the plane). The crate's tests assert,
+//! [`plane_clears`]), or behind every such ray, which moves away from its centre and leaves
+//! it within `ε` where it starts inside it ([`recedes`]: a floor under a sphere resting on
+//! it, lit from too low for the plane). The crate's tests assert,
 //! at every pixel they render, that no caster these rules leave out blocks the ray the
 //! kernel would cast.
 
@@ -362,9 +362,10 @@ fn plane_clears((r, rk, eps): (i64, i64, i64), len: f32, delta: f32, widen: f32)
         .is_some_and(|c| c - slack > margin)
 }
 
-/// Whether every shadow ray toward a distant light from the pixels of a sphere of radius
-/// `r` that test casters moves away from the centre of a caster of radius `rk` at `|Δ| =
-/// len` (raw), and, where it starts inside the caster, leaves it within `ε`: then the
+/// Whether every shadow ray toward a light (`δ` a lower bound on `n·L` over the rays) from
+/// the pixels of a sphere of radius `r` that test casters moves away from the centre of a
+/// caster of radius `rk` at `|Δ| = len` (raw), and, where it starts inside the caster,
+/// leaves it within `ε`: then the
 /// exact ray ([`PreparedFixed::blocked_along`]) never finds the caster blocking, although
 /// the plane may not keep it off ([`plane_clears`]). `δ` and `widen` as there; the
 /// geometry is [`crate::caster_plane::recession`]'s and
