@@ -255,6 +255,21 @@ fn random_floor<const S: usize, const L: usize>(
     scene
 }
 
+/// `scene`'s spheres and lights at the capacities `S`, `L`: a preset (`Scene<6, 3>`) beside
+/// the random scenes of a test, which share one type.
+pub(crate) fn with_capacity<const S: usize, const L: usize, const S0: usize, const L0: usize>(
+    scene: &Scene<S0, L0>,
+) -> Scene<S, L> {
+    let mut out = Scene::new(*scene.camera(), scene.background()).unwrap();
+    for s in scene.spheres() {
+        out.add_sphere(*s).unwrap();
+    }
+    for l in scene.lights() {
+        out.add_light(*l).unwrap();
+    }
+    out
+}
+
 /// A pair of spheres and a distant light for the tests of the plane rule that leaves a
 /// caster out of a sphere's mask (`src/fixed/narrow_caster_prepare.rs`,
 /// `src/float/prepare.rs`), in `f64`: the sphere's radius `r`, the caster's `rc`, the lift
@@ -303,6 +318,22 @@ impl PlanePair {
         let d = n.map(|c| round(c * apart));
         let l = unit64([next(-1.0, 1.0), next(-1.0, 1.0), next(-1.0, 1.0)]);
         PlanePair { r, rc, eps, d, l }
+    }
+
+    /// The pair moved along `Δ` until the surfaces touch, as a sphere resting on another (`Δ`
+    /// in whole raw units where `unit` is above 1, as [`Self::random`] makes it).
+    pub(crate) fn touching(mut self, unit: f64) -> PlanePair {
+        let len = dot64(self.d, self.d).sqrt();
+        let apart = self.r + self.rc;
+        self.d = self.d.map(|c| {
+            let c = c * apart / len;
+            if unit > 1.0 {
+                c.round()
+            } else {
+                c
+            }
+        });
+        self
     }
 
     /// `|Δ|` and `n·L`.

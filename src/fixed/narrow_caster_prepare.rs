@@ -629,9 +629,7 @@ mod tests {
             let mut pair = PlanePair::random(&mut next, 65536.0);
             // Half of the pairs touching, as a sphere resting on another.
             if next(0.0, 1.0) < 0.5 {
-                let len = (pair.d.iter().map(|c| c * c).sum::<f64>()).sqrt();
-                let apart = pair.r + pair.rc;
-                pair.d = pair.d.map(|c| (c * apart / len).round());
+                pair = pair.touching(65536.0);
             }
             let PlanePair { r, rc, eps, d, l } = pair;
             let l_q30 = l.map(|c| (c * (1u64 << 30) as f64).round() as i64);

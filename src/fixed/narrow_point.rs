@@ -315,7 +315,6 @@ mod tests {
     use crate::fixed::narrow::tests::surfaces;
     use crate::fixed::vector::each3;
     use crate::test_scenes::{random_lamp_scene, uniform};
-    use crate::Scene;
     extern crate std;
     use std::vec::Vec;
 
@@ -327,13 +326,7 @@ mod tests {
             .filter_map(|_| PreparedFixed::new(&random_lamp_scene::<16, 8>(&mut next), 96, 72).ok())
             .collect();
         for scene in [crate::lamp(), crate::three_lights()].into_iter().flatten() {
-            let mut big = Scene::<16, 8>::new(*scene.camera(), scene.background()).unwrap();
-            for s in scene.spheres() {
-                big.add_sphere(*s).unwrap();
-            }
-            for l in scene.lights() {
-                big.add_light(*l).unwrap();
-            }
+            let big = crate::test_scenes::with_capacity::<16, 8, 6, 3>(&scene);
             out.push(PreparedFixed::new(&big, 160, 120).unwrap());
         }
         out.retain(|f| f.narrow.is_some());

@@ -141,15 +141,7 @@ mod tests {
             crate::presets::lamp,
             crate::presets::three_lights,
         ] {
-            let m = preset().unwrap();
-            let mut scene = Scene::<8, 4>::new(*m.camera(), m.background()).unwrap();
-            for s in m.spheres() {
-                scene.add_sphere(*s).unwrap();
-            }
-            for l in m.lights() {
-                scene.add_light(*l).unwrap();
-            }
-            scenes.push(scene);
+            scenes.push(crate::test_scenes::with_capacity(&preset().unwrap()));
         }
         for n in 0..48 {
             scenes.push(if n % 2 == 0 {

@@ -917,14 +917,7 @@ mod tests {
         let floors = (0..30).map(|_| crate::test_scenes::random_floor_scene::<8, 4>(&mut next));
         // The floor preset: its fill light is low enough that the receding rule, not the
         // plane, leaves the floor out of the resting spheres' casters.
-        let preset = crate::floor().unwrap();
-        let mut matrix_floor = Scene::<8, 4>::new(*preset.camera(), preset.background()).unwrap();
-        for s in preset.spheres() {
-            matrix_floor.add_sphere(*s).unwrap();
-        }
-        for l in preset.lights() {
-            matrix_floor.add_light(*l).unwrap();
-        }
+        let matrix_floor = crate::test_scenes::with_capacity(&crate::floor().unwrap());
         for scene in random_scenes(0xbb67_ae85_84ca_a73b, 30)
             .into_iter()
             .chain(floors)

@@ -819,8 +819,7 @@ mod tests {
         for _ in 0..40_000 {
             let mut pair = PlanePair::random(&mut next, 1.0);
             if next(0.0, 1.0) < 0.5 {
-                let len = (pair.d.iter().map(|c| c * c).sum::<f64>()).sqrt();
-                pair.d = pair.d.map(|c| c * (pair.r + pair.rc) / len);
+                pair = pair.touching(1.0);
             }
             let PlanePair { r, rc, eps, d, l } = pair;
             let (df, lf) = (d.map(|c| c as f32), l.map(|c| c as f32));

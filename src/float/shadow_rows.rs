@@ -131,14 +131,7 @@ mod tests {
     /// The `floor` preset and random floors under distant lights.
     fn floors() -> Vec<Scene<8, 4>> {
         let mut next = uniform(0x5eed_f10a_7c0d_e5ad);
-        let m = crate::presets::floor().unwrap();
-        let mut scene = Scene::<8, 4>::new(*m.camera(), m.background()).unwrap();
-        for s in m.spheres() {
-            scene.add_sphere(*s).unwrap();
-        }
-        for l in m.lights() {
-            scene.add_light(*l).unwrap();
-        }
+        let scene = crate::test_scenes::with_capacity(&crate::presets::floor().unwrap());
         let mut scenes = std::vec![scene];
         scenes.extend((0..60).map(|_| random_floor_scene(&mut next)));
         scenes
